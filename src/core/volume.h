@@ -1,0 +1,137 @@
+// shadowvol core: silhouettes and shadow-volume geometry, per frame, per light.
+//
+// Owns: facing per face (computed once per face per light, never per edge), the signed weight
+// of every side quad, and the caps. One implementation serves every generator:
+//
+//   - multiplicity (Kim, Kim & Turk 2008, §1.1-1.2): the general one, exact on any triangle
+//     soup. The side quad of edge e has weight m(e) = sum over the faces f using e of
+//     facing(f) * orient(f, e), where facing is +1 / -1 / 0 (light in front / behind / in the
+//     plane or zero area) and orient is +1 when f runs along e's canonical direction, -1 when
+//     against. Caps per face: light cap weight facing(f), dark cap weight -facing(f).
+//   - robust (GPU Gems 3 ch. 11, §11.3.1): the per-face form of the same sum. Every face, front
+//     or back, closes its own volume; an edge is extruded once per face unless its two faces
+//     are a consistent manifold pair with the same facing. Non-manifold and inconsistently
+//     wound edges are treated as open, as the chapter's preprocessing does. Each quad has
+//     weight +-1 (what a stencil buffer can add in one draw), so it emits more primitives.
+//   - standard (Intel, "mainstream shadow volumes"; GPU Gems 3 §11.2.2): only faces that face the
+//     light count (facing > 0). Silhouette quads get weight +-1, light cap = front faces,
+//     dark cap = back faces projected to infinity. Exact only on closed 2-manifolds
+//     (TopologyReport::closed_manifold); check_generator refuses it elsewhere.
+//   - automatic: standard on closed manifolds, multiplicity otherwise.
+//
+// The law every generator keeps (tests/core/volume_law_test.cpp proves it with exact
+// arithmetic): for any point P, the signed number of volume primitives crossed on a path from a
+// point outside every shadow to P (+weight entering through the front side of a primitive,
+// -weight through its back) equals the number of caster surfaces on the segment from P to the
+// light: all of them for multiplicity and robust, the light-facing ones for standard.
+//
+// Orientation: every primitive is counter-clockwise seen from outside its volume (its front
+// side), as in the GPU Gems 3 listing 11-1. A weight w on a primitive means "this primitive,
+// drawn w times" (w < 0: drawn |w| times with the opposite winding).
+//
+// Spaces: everything is in the mesh's own space; pass the light in that space too (the inverse
+// model matrix times the world light). Vertices at infinity have w = 0. A caller that maps the
+// volume by a transform with negative determinant must negate every weight, since the
+// transform reverses every primitive's winding.
+//
+// Pure: no I/O, no threads, no globals. The range functions let a caller split one mesh over
+// threads (render/volume_builder.h does, with oneTBB) and get the same output in the same order.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "core/expected.h"
+#include "core/topology.h"
+
+namespace shadowvol {
+
+enum class Generator : std::uint8_t { standard, robust, multiplicity, automatic };
+
+std::string_view to_string(Generator generator);
+// Accepts "standard", "robust", "multiplicity", "auto"; the error lists the valid names.
+Expected<Generator> parse_generator(std::string_view name);
+
+// What `automatic` becomes for a mesh with this report; other generators are returned as given.
+Generator resolve_generator(Generator requested, const TopologyReport& report);
+
+// Refuses `standard` on a mesh that is not a closed 2-manifold (its volumes would leak), naming
+// `source` and the offending counts. Any other generator is accepted for any mesh.
+Expected<void> check_generator(Generator requested, const TopologyReport& report,
+                               std::string_view source);
+
+// A list of volume primitives of one kind: `vertices` holds kCorners homogeneous vertices per
+// primitive, `weights` one signed weight per primitive.
+struct PrimitiveList {
+  std::vector<glm::vec4> vertices;
+  std::vector<std::int32_t> weights;
+
+  std::size_t size() const { return weights.size(); }
+  void clear() { vertices.clear(); weights.clear(); }
+};
+
+// The caller owns it and reuses it from frame to frame: clear() keeps the capacity, so a frame
+// that emits no more than an earlier one allocates nothing.
+struct VolumeBuffer {
+  // Side quads (u, u_inf, v_inf, v): the edge u->v extruded away from the light, u and v with
+  // w = 1, their extrusions with w = 0. Split into triangles by kQuadTriangles.
+  PrimitiveList sides;
+  // Light caps: the caster triangles themselves, in their own vertex order (the order the depth
+  // pass draws them, so that they rasterize to exactly the surface's depth); a cap facing away
+  // from the light gets a negative weight instead of a reversed order.
+  PrimitiveList light_caps;
+  // Dark caps: caster triangles projected to infinity (w = 0), own vertex order, signed weight.
+  // Empty for directional lights: every vertex projects to the same point at infinity.
+  PrimitiveList dark_caps;
+
+  void clear() { sides.clear(); light_caps.clear(); dark_caps.clear(); }
+  std::size_t primitive_count() const {
+    return sides.size() + light_caps.size() + dark_caps.size();
+  }
+  // Appends `other` after this buffer's primitives of each kind.
+  void append(const VolumeBuffer& other);
+};
+
+inline constexpr int kQuadCorners = 4;
+inline constexpr int kTriangleCorners = 3;
+// The one split of a side quad into two triangles that every consumer uses, so that neighbouring
+// quads share the edges u-u_inf exactly.
+inline constexpr int kQuadTriangles[6] = {0, 1, 2, 0, 2, 3};
+
+struct IndexRange {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+};
+
+// facing[f - faces.begin] = +1 if the light is on the side face f's normal points to, -1 if on
+// the other side, 0 if the light lies in the face's plane or the face has zero area. `light` is
+// homogeneous: (x, y, z, 1) a point light, (x, y, z, 0) a directional light shining from
+// direction (x, y, z) towards -(x, y, z). Computed in double from the float positions.
+void compute_facing(const Topology& topo, const glm::vec4& light, IndexRange faces,
+                    std::span<std::int8_t> facing);
+
+// Appends the side quads of edges [edges.begin, edges.end) to out.sides, in edge order.
+// `facing` covers every face of the mesh. `generator` must be resolved (not automatic).
+void append_sides(const Topology& topo, const glm::vec4& light, Generator generator,
+                  std::span<const std::int8_t> facing, IndexRange edges, VolumeBuffer& out);
+
+// Appends the light and dark caps of faces [faces.begin, faces.end), in face order.
+void append_caps(const Topology& topo, const glm::vec4& light, Generator generator,
+                 std::span<const std::int8_t> facing, IndexRange faces, VolumeBuffer& out);
+
+struct VolumeOptions {
+  Generator generator = Generator::automatic;
+  bool caps = true;  // only z-fail needs caps; z-pass draws the sides alone
+};
+
+// The whole volume of one mesh for one light, on the calling thread: clears `out`, fills
+// `facing` (resized to the face count; caller-owned scratch) and appends sides, then caps.
+void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOptions& options,
+                  std::vector<std::int8_t>& facing, VolumeBuffer& out);
+
+}  // namespace shadowvol

@@ -1,0 +1,56 @@
+#include "render/volume_builder.h"
+
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+
+namespace shadowvol {
+namespace {
+
+std::size_t chunk_count(std::size_t n) {
+  return (n + VolumeBuilder::kChunk - 1) / VolumeBuilder::kChunk;
+}
+
+IndexRange chunk_range(std::size_t chunk, std::size_t n) {
+  const std::size_t begin = chunk * VolumeBuilder::kChunk;
+  return {begin, std::min(n, begin + VolumeBuilder::kChunk)};
+}
+
+}  // namespace
+
+void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
+  if (scratch_.size() < jobs.size()) scratch_.resize(jobs.size());
+  tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t j) {
+    const VolumeJob& job = jobs[j];
+    const Topology& topo = *job.topology;
+    Scratch& scratch = scratch_[j];
+    const Generator generator = resolve_generator(job.options.generator, topo.report);
+    const std::size_t faces = topo.face_count(), edges = topo.edge_count();
+
+    scratch.facing.resize(faces);
+    tbb::parallel_for(std::size_t{0}, chunk_count(faces), [&](std::size_t c) {
+      const IndexRange r = chunk_range(c, faces);
+      compute_facing(topo, job.light, r,
+                     std::span(scratch.facing).subspan(r.begin, r.end - r.begin));
+    });
+
+    // Chunks [0, edge chunks) emit sides, the rest caps: the same order build_volume writes.
+    const std::size_t side_chunks = chunk_count(edges);
+    const std::size_t cap_chunks = job.options.caps ? chunk_count(faces) : 0;
+    scratch.chunks.resize(side_chunks + cap_chunks);
+    tbb::parallel_for(std::size_t{0}, side_chunks + cap_chunks, [&](std::size_t c) {
+      VolumeBuffer& part = scratch.chunks[c];
+      part.clear();
+      if (c < side_chunks)
+        append_sides(topo, job.light, generator, scratch.facing, chunk_range(c, edges), part);
+      else
+        append_caps(topo, job.light, generator, scratch.facing,
+                    chunk_range(c - side_chunks, faces), part);
+    });
+
+    job.out->clear();
+    for (const VolumeBuffer& part : scratch.chunks) job.out->append(part);
+  });
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,102 @@
+#include "scene/mesh_io.h"
+
+#include <exception>
+#include <fstream>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+namespace shadowvol {
+namespace {
+
+struct Gather {
+  const aiScene* scene;
+  LoadedMesh* out;
+  std::string error;  // the first problem found, empty if none
+
+  void node(const aiNode* n, const aiMatrix4x4& parent) {
+    const aiMatrix4x4 world = parent * n->mTransformation;
+    for (unsigned i = 0; i < n->mNumMeshes; ++i) mesh(scene->mMeshes[n->mMeshes[i]], world);
+    for (unsigned i = 0; i < n->mNumChildren; ++i) node(n->mChildren[i], world);
+  }
+
+  void mesh(const aiMesh* m, const aiMatrix4x4& world) {
+    Mesh& dst = out->mesh;
+    const std::size_t base = dst.positions.size();
+    for (unsigned v = 0; v < m->mNumVertices; ++v) {
+      const aiVector3D p = world * m->mVertices[v];
+      dst.positions.emplace_back(p.x, p.y, p.z);
+    }
+    for (unsigned f = 0; f < m->mNumFaces; ++f) {
+      const aiFace& face = m->mFaces[f];
+      if (face.mNumIndices == 1) { ++out->points_ignored; continue; }
+      if (face.mNumIndices == 2) { ++out->lines_ignored; continue; }
+      if (face.mNumIndices != 3) continue;  // cannot happen after aiProcess_Triangulate
+      for (int k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= m->mNumVertices && error.empty())
+          error = "mesh '" + std::string(m->mName.C_Str()) + "' face " + std::to_string(f) +
+                  " uses vertex " + std::to_string(face.mIndices[k]) + " of only " +
+                  std::to_string(m->mNumVertices);
+        dst.indices.push_back(static_cast<std::uint32_t>(base + face.mIndices[k]));
+      }
+    }
+  }
+};
+
+}  // namespace
+
+Expected<LoadedMesh> load_mesh(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    return make_error(name + ": no such file");
+  if (std::filesystem::is_directory(path, ec))
+    return make_error(name + ": is a directory, not a mesh file");
+  if (!std::ifstream(path, std::ios::binary).good())
+    return make_error(name + ": cannot be opened for reading (check its permissions)");
+
+  Assimp::Importer importer;
+  // Only positions and faces matter to a shadow caster; ask assimp for nothing else.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
+                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
+                                  aiComponent_COLORS | aiComponent_TEXCOORDS |
+                                  aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+                                  aiComponent_TEXTURES | aiComponent_LIGHTS |
+                                  aiComponent_CAMERAS);
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(name, aiProcess_Triangulate | aiProcess_SortByPType |
+                                        aiProcess_RemoveComponent |
+                                        aiProcess_ValidateDataStructure);
+  } catch (const std::exception& e) {
+    return make_error(name + ": cannot be read as a mesh (" + e.what() + ")");
+  }
+  if (scene == nullptr) {
+    std::string why = importer.GetErrorString();
+    if (why.empty()) why = "unknown format";
+    return make_error(name + ": cannot be read as a mesh (" + why + ")");
+  }
+  if (scene->mRootNode == nullptr)
+    return make_error(name + ": the file has no scene hierarchy (no meshes placed in it)");
+
+  LoadedMesh loaded;
+  Gather gather{scene, &loaded, {}};
+  gather.node(scene->mRootNode, aiMatrix4x4());
+  if (!gather.error.empty()) return make_error(name + ": " + gather.error);
+  if (loaded.points_ignored > 0)
+    loaded.warnings.push_back(name + ": ignored " + std::to_string(loaded.points_ignored) +
+                              " point primitives (points cast no shadow)");
+  if (loaded.lines_ignored > 0)
+    loaded.warnings.push_back(name + ": ignored " + std::to_string(loaded.lines_ignored) +
+                              " line primitives (lines cast no shadow)");
+  if (loaded.mesh.indices.empty())
+    return make_error(name + ": the file has no triangles" +
+                      (loaded.points_ignored + loaded.lines_ignored > 0
+                           ? std::string(" (only points or lines)")
+                           : std::string()));
+  if (auto valid = validate_mesh(loaded.mesh, name); !valid) return valid.error();
+  return loaded;
+}
+
+}  // namespace shadowvol
