@@ -55,6 +55,8 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path) {
     return make_error(name + ": is a directory, not a mesh file");
   if (!std::ifstream(path, std::ios::binary).good())
     return make_error(name + ": cannot be opened for reading (check its permissions)");
+  if (std::filesystem::file_size(path, ec) == 0 && !ec)
+    return make_error(name + ": the file is empty");
 
   Assimp::Importer importer;
   // Only positions and faces matter to a shadow caster; ask assimp for nothing else.
@@ -69,13 +71,16 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path) {
     scene = importer.ReadFile(name, aiProcess_Triangulate | aiProcess_SortByPType |
                                         aiProcess_RemoveComponent |
                                         aiProcess_ValidateDataStructure);
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // assimp catches most of its own; not all
     return make_error(name + ": cannot be read as a mesh (" + e.what() + ")");
   }
   if (scene == nullptr) {
-    std::string why = importer.GetErrorString();
-    if (why.empty()) why = "unknown format";
-    return make_error(name + ": cannot be read as a mesh (" + why + ")");
+    const std::string why = importer.GetErrorString();
+    // A header that declares billions of elements makes the reader's first allocation fail.
+    if (why.find("bad_alloc") != std::string::npos)
+      return make_error(name + ": declares more data than fits in memory (a corrupt header?)");
+    return make_error(name + ": cannot be read as a mesh (" +
+                      (why.empty() ? std::string("unknown format") : why) + ")");
   }
   if (scene->mRootNode == nullptr)
     return make_error(name + ": the file has no scene hierarchy (no meshes placed in it)");

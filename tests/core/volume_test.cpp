@@ -1,0 +1,128 @@
+// Hand-worked volumes: a single triangle and a cube under a light straight above.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "core/topology.h"
+#include "core/volume.h"
+#include "test_meshes.h"
+
+namespace shadowvol {
+namespace {
+
+VolumeBuffer build(const Mesh& mesh, glm::vec4 light, Generator g, bool caps = true) {
+  const Topology topo = build_topology(mesh);
+  VolumeBuffer out;
+  std::vector<std::int8_t> facing;
+  build_volume(topo, light, {g, caps}, facing, out);
+  return out;
+}
+
+std::vector<int> sorted_weights(const PrimitiveList& list) {
+  std::vector<int> w(list.weights.begin(), list.weights.end());
+  std::sort(w.begin(), w.end());
+  return w;
+}
+
+TEST(Volume, SingleTriangleUnderAPointLight) {
+  Mesh tri;
+  testing::add_triangle(tri, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});  // normal +z
+  const VolumeBuffer v = build(tri, {0, 0, 10, 1}, Generator::multiplicity);
+  // Edges 0-1 and 1-2 run along their canonical direction (+1), edge 2-0 against it (-1).
+  EXPECT_EQ(sorted_weights(v.sides), (std::vector<int>{-1, 1, 1}));
+  ASSERT_EQ(v.light_caps.size(), 1u);
+  EXPECT_EQ(v.light_caps.weights[0], 1);
+  EXPECT_EQ(v.light_caps.vertices[1], glm::vec4(1, 0, 0, 1));  // own order, unchanged
+  ASSERT_EQ(v.dark_caps.size(), 1u);
+  EXPECT_EQ(v.dark_caps.weights[0], -1);
+  EXPECT_EQ(v.dark_caps.vertices[1], glm::vec4(1, 0, -10, 0));  // vertex minus light, w = 0
+  // First quad is edge 0 -> 1: (u, u_inf, v_inf, v).
+  const glm::vec4 expected[4] = {{0, 0, 0, 1}, {0, 0, -10, 0}, {1, 0, -10, 0}, {1, 0, 0, 1}};
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(v.sides.vertices[k], expected[k]) << k;
+}
+
+TEST(Volume, TriangleFacingAwayGetsNegatedWeightsNotReversedVertices) {
+  Mesh tri;
+  testing::add_triangle(tri, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const VolumeBuffer v = build(tri, {0, 0, -10, 1}, Generator::multiplicity);
+  EXPECT_EQ(sorted_weights(v.sides), (std::vector<int>{-1, -1, 1}));
+  EXPECT_EQ(v.light_caps.weights[0], -1);
+  EXPECT_EQ(v.light_caps.vertices[0], glm::vec4(0, 0, 0, 1));
+  EXPECT_EQ(v.dark_caps.weights[0], 1);
+}
+
+TEST(Volume, EdgeOnTriangleCastsNothing) {
+  Mesh tri;
+  testing::add_triangle(tri, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  EXPECT_EQ(build(tri, {5, 5, 0, 1}, Generator::multiplicity).primitive_count(), 0u);
+  EXPECT_EQ(build(tri, {1, 0, 0, 0}, Generator::robust).primitive_count(), 0u);
+}
+
+TEST(Volume, DirectionalLightsHaveNoDarkCaps) {
+  Mesh tri;
+  testing::add_triangle(tri, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const VolumeBuffer v = build(tri, {0.2f, 0.1f, 1, 0}, Generator::multiplicity);
+  EXPECT_EQ(v.sides.size(), 3u);
+  EXPECT_EQ(v.light_caps.size(), 1u);
+  EXPECT_EQ(v.dark_caps.size(), 0u);
+  EXPECT_EQ(v.sides.vertices[1], glm::vec4(-0.2f, -0.1f, -1, 0));  // extrusion along -direction
+}
+
+TEST(Volume, CubeUnderALightAboveEachGenerator) {
+  const Mesh cube = testing::box({-1, -1, -1}, {1, 1, 1});
+  const glm::vec4 light(0, 0, 100, 1);  // only the two top triangles face it
+  const VolumeBuffer standard = build(cube, light, Generator::standard);
+  EXPECT_EQ(sorted_weights(standard.sides), (std::vector<int>{-1, -1, 1, 1}));
+  EXPECT_EQ(standard.light_caps.size(), 2u);   // front faces
+  EXPECT_EQ(standard.dark_caps.size(), 10u);   // back faces at infinity
+  const VolumeBuffer multiplicity = build(cube, light, Generator::multiplicity);
+  EXPECT_EQ(sorted_weights(multiplicity.sides), (std::vector<int>{-2, -2, 2, 2}));
+  EXPECT_EQ(multiplicity.light_caps.size(), 12u);
+  EXPECT_EQ(multiplicity.dark_caps.size(), 12u);
+  const VolumeBuffer robust = build(cube, light, Generator::robust);
+  EXPECT_EQ(robust.sides.size(), 8u);  // each silhouette edge once per face (GPU Gems 3 §11.3.1)
+  EXPECT_EQ(sorted_weights(robust.sides), (std::vector<int>{-1, -1, -1, -1, 1, 1, 1, 1}));
+  // auto picks standard for the closed cube; z-pass needs no caps.
+  const VolumeBuffer automatic = build(cube, light, Generator::automatic, false);
+  EXPECT_EQ(automatic.sides.weights, standard.sides.weights);
+  EXPECT_EQ(automatic.light_caps.size() + automatic.dark_caps.size(), 0u);
+}
+
+TEST(Volume, BufferIsReusedWithoutReallocating) {
+  const Topology topo = build_topology(testing::box({-1, -1, -1}, {1, 1, 1}));
+  VolumeBuffer out;
+  std::vector<std::int8_t> facing;
+  build_volume(topo, {3, 2, 5, 1}, {}, facing, out);
+  const VolumeBuffer first = out;
+  const glm::vec4* storage = out.sides.vertices.data();
+  build_volume(topo, {3, 2, 5, 1}, {}, facing, out);
+  EXPECT_EQ(out.sides.vertices.data(), storage);
+  EXPECT_EQ(out.sides.vertices, first.sides.vertices);
+  EXPECT_EQ(out.dark_caps.weights, first.dark_caps.weights);
+}
+
+TEST(Generators, ParseResolveAndCheck) {
+  EXPECT_EQ(*parse_generator("robust"), Generator::robust);
+  EXPECT_EQ(*parse_generator("auto"), Generator::automatic);
+  auto bad = parse_generator("fast");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().message,
+            "unknown generator 'fast': expected standard, robust, multiplicity or auto");
+
+  const Topology closed = build_topology(testing::box({0, 0, 0}, {1, 1, 1}));
+  const Topology open = build_topology(testing::box({0, 0, 0}, {1, 1, 1}, false));
+  EXPECT_EQ(resolve_generator(Generator::automatic, closed.report), Generator::standard);
+  EXPECT_EQ(resolve_generator(Generator::automatic, open.report), Generator::multiplicity);
+  EXPECT_EQ(resolve_generator(Generator::robust, closed.report), Generator::robust);
+  EXPECT_TRUE(check_generator(Generator::standard, closed.report, "box").ok());
+  auto refused = check_generator(Generator::standard, open.report, "open_box.obj");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message.rfind("open_box.obj: the standard generator needs a closed "
+                                          "2-manifold, but this mesh has 4 boundary",
+                                          0),
+            0u);
+  EXPECT_TRUE(check_generator(Generator::multiplicity, open.report, "open").ok());
+}
+
+}  // namespace
+}  // namespace shadowvol

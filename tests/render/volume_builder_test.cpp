@@ -1,0 +1,56 @@
+// The threaded builder gives exactly core's single-threaded output, whatever the thread count.
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include "core/topology.h"
+#include "render/volume_builder.h"
+#include "scene/shapes.h"
+#include "test_meshes.h"
+
+namespace shadowvol {
+namespace {
+
+void expect_same(const VolumeBuffer& a, const VolumeBuffer& b) {
+  EXPECT_EQ(a.sides.vertices, b.sides.vertices);
+  EXPECT_EQ(a.sides.weights, b.sides.weights);
+  EXPECT_EQ(a.light_caps.vertices, b.light_caps.vertices);
+  EXPECT_EQ(a.light_caps.weights, b.light_caps.weights);
+  EXPECT_EQ(a.dark_caps.vertices, b.dark_caps.vertices);
+  EXPECT_EQ(a.dark_caps.weights, b.dark_caps.weights);
+}
+
+TEST(VolumeBuilder, MatchesSerialBuildForAnyThreadCount) {
+  // Big enough for several chunks of faces and edges, plus small and open objects.
+  std::vector<Topology> topologies;
+  topologies.push_back(build_topology(make_bumpy_torus_with(3 * VolumeBuilder::kChunk + 77)));
+  topologies.push_back(build_topology(testing::box({-1, -1, -1}, {1, 1, 1}, false)));
+  topologies.push_back(build_topology(testing::adversarial_meshes(3).back().mesh));
+  const glm::vec4 lights[] = {{0.3f, 2.0f, 3.0f, 1.0f}, {0.2f, -0.4f, 1.0f, 0.0f}};
+  for (const glm::vec4& light : lights)
+    for (Generator g : {Generator::automatic, Generator::robust, Generator::multiplicity}) {
+      std::vector<VolumeBuffer> serial(topologies.size());
+      std::vector<std::int8_t> facing;
+      for (std::size_t i = 0; i < topologies.size(); ++i)
+        build_volume(topologies[i], light, {g, true}, facing, serial[i]);
+      ASSERT_GT(serial[0].sides.size(), 100u);
+      for (int threads : {1, 2, 4}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        std::vector<VolumeBuffer> parallel(topologies.size());
+        std::vector<VolumeJob> jobs;
+        for (std::size_t i = 0; i < topologies.size(); ++i)
+          jobs.push_back({&topologies[i], light, {g, true}, &parallel[i]});
+        VolumeBuilder builder;
+        builder.build(jobs);
+        builder.build(jobs);  // the second frame reuses the scratch memory
+        for (std::size_t i = 0; i < topologies.size(); ++i) {
+          SCOPED_TRACE("object " + std::to_string(i) + ", " + std::to_string(threads) +
+                       " threads, " + std::string(to_string(g)));
+          expect_same(parallel[i], serial[i]);
+        }
+      }
+    }
+}
+
+}  // namespace
+}  // namespace shadowvol
