@@ -1,5 +1,6 @@
 #include "core/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -23,6 +24,9 @@ Expected<void> validate_mesh(const Mesh& mesh, std::string_view source) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       return make_error(where + ": vertex " + std::to_string(i) +
                         " has a coordinate that is NaN or infinite");
+    if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
+      return make_error(where + ": vertex " + std::to_string(i) + " lies more than 1e18 from the " +
+                        "origin; scale the model down or move it nearer the origin");
   }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= mesh.positions.size())

@@ -29,11 +29,13 @@ struct Mesh {
 // the flag bits they pack (topology stores a face index and its orientation in one uint32).
 inline constexpr std::size_t kMaxTriangles = std::size_t{1} << 28;  // 268M triangles
 inline constexpr std::size_t kMaxVertices = std::size_t{1} << 30;
+// Face planes are stored in float: |coordinate| * |normal| must stay far below float's 3.4e38.
+inline constexpr float kMaxCoordinate = 1e18f;
 
 // Checks that a mesh can be used by every later stage. Returns an error naming `source` (a file
 // name or object name, for the message) and the first problem found: no triangles, an index
 // count that is not a multiple of 3, an index outside the position array, a NaN or infinite
-// coordinate, or a size above kMaxTriangles / kMaxVertices. Degenerate triangles are not errors:
+// coordinate, a coordinate beyond +-kMaxCoordinate, or a size above kMaxTriangles / kMaxVertices. Degenerate triangles are not errors:
 // the topology counts them and the volume generators handle them.
 Expected<void> validate_mesh(const Mesh& mesh, std::string_view source);
 

@@ -109,11 +109,27 @@ bool is_collapsed(const std::uint32_t* v) { return v[0] == v[1] || v[1] == v[2] 
 }  // namespace
 
 std::size_t Topology::frame_bytes() const {
-  return positions.size() * sizeof(glm::vec3) + face_vertices.size() * sizeof(std::uint32_t) +
-         edge_vertices.size() * sizeof(std::uint32_t) +
-         edge_face_offsets.size() * sizeof(std::uint32_t) +
-         edge_faces.size() * sizeof(std::uint32_t);
+  return face_planes.size() * sizeof(glm::vec4) + edge_faces.size() * sizeof(IndexPair) +
+         irregular_vertices.size() * sizeof(IndexPair) +
+         irregular_offsets.size() * sizeof(std::uint32_t) +
+         irregular_faces.size() * sizeof(std::uint32_t);
 }
+
+namespace {
+
+// The face's plane scaled by a power of two so that its largest normal component lies in
+// [0.5, 1): no overflow in float for any finite mesh, and no rounding for small integers.
+glm::vec4 face_plane(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+  if (largest == 0.0) return glm::vec4(0.0f);
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  const glm::dvec3 scaled = n * std::ldexp(1.0, -exponent);
+  return glm::vec4(glm::vec3(scaled), static_cast<float>(-glm::dot(scaled, a)));
+}
+
+}  // namespace
 
 Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
   assert(validate_mesh(mesh, "build_topology").ok());
@@ -138,13 +154,15 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
   };
   std::vector<HalfEdge> half_edges;
   half_edges.reserve(mesh.indices.size());
+  topo.face_planes.reserve(r.triangles);
   UnionFind components(topo.positions.size());
   for (std::uint32_t f = 0; f < r.triangles; ++f) {
     const std::uint32_t* v = &topo.face_vertices[3 * f];
     components.unite(v[0], v[1]);
     components.unite(v[1], v[2]);
     const glm::dvec3 a(topo.positions[v[0]]), b(topo.positions[v[1]]), c(topo.positions[v[2]]);
-    if (is_collapsed(v) || glm::cross(b - a, c - a) == glm::dvec3(0.0)) ++r.degenerate_triangles;
+    topo.face_planes.push_back(face_plane(a, b, c));
+    if (topo.face_planes.back() == glm::vec4(0.0f)) ++r.degenerate_triangles;
     if (is_collapsed(v)) continue;
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t from = v[k], to = v[(k + 1) % 3];
@@ -157,22 +175,33 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
     return x.key != y.key ? x.key < y.key : x.face_ref < y.face_ref;
   });
 
-  topo.edge_faces.reserve(half_edges.size());
-  topo.edge_face_offsets.push_back(0);
+  const auto no_face = static_cast<std::uint32_t>(r.triangles);
+  topo.edge_faces.reserve(half_edges.size() / 2);
+  topo.edge_vertices.reserve(half_edges.size() / 2);
+  topo.irregular_offsets.push_back(0);
   for (std::size_t i = 0; i < half_edges.size();) {
     std::size_t j = i;
     int forward = 0, backward = 0;
-    for (; j < half_edges.size() && half_edges[j].key == half_edges[i].key; ++j) {
-      topo.edge_faces.push_back(half_edges[j].face_ref);
+    for (; j < half_edges.size() && half_edges[j].key == half_edges[i].key; ++j)
       (is_reversed(half_edges[j].face_ref) ? backward : forward) += 1;
-    }
-    topo.edge_vertices.push_back(static_cast<std::uint32_t>(half_edges[i].key >> 32));
-    topo.edge_vertices.push_back(static_cast<std::uint32_t>(half_edges[i].key & 0xffffffffu));
-    topo.edge_face_offsets.push_back(static_cast<std::uint32_t>(topo.edge_faces.size()));
+    const IndexPair low_high{static_cast<std::uint32_t>(half_edges[i].key >> 32),
+                             static_cast<std::uint32_t>(half_edges[i].key & 0xffffffffu)};
+    const std::uint32_t first = half_edges[i].face_ref;
     const std::size_t uses = j - i;
     if (uses == 1) ++r.boundary_edges;
-    else if (uses > 2) ++r.nonmanifold_edges;
-    else if (forward != 1 || backward != 1) ++r.inconsistent_edges;
+    if (uses > 2) ++r.nonmanifold_edges;
+    if (uses == 2 && (forward != 1 || backward != 1)) ++r.inconsistent_edges;
+    if (uses == 1 || (uses == 2 && forward == 1 && backward == 1)) {
+      // Regular: store it in the direction its first face runs it.
+      topo.edge_faces.push_back({face_of(first), uses == 2 ? face_of(half_edges[i + 1].face_ref)
+                                                           : no_face});
+      topo.edge_vertices.push_back(is_reversed(first) ? IndexPair{low_high[1], low_high[0]}
+                                                      : low_high);
+    } else {
+      topo.irregular_vertices.push_back(low_high);
+      for (std::size_t k = i; k < j; ++k) topo.irregular_faces.push_back(half_edges[k].face_ref);
+      topo.irregular_offsets.push_back(static_cast<std::uint32_t>(topo.irregular_faces.size()));
+    }
     i = j;
   }
   r.edges = topo.edge_count();

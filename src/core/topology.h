@@ -7,11 +7,13 @@
 // Pure: no I/O, no threads, no globals.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "core/mesh.h"
 
@@ -41,28 +43,51 @@ struct TopologyReport {
   bool closed_manifold = false;
 };
 
-// Edge face reference: face index in the upper 31 bits, and in bit 0 whether the face traverses
-// the edge against its canonical direction (edge_vertices[2e] -> edge_vertices[2e+1]).
+// Face reference of an irregular edge: face index in the upper bits, and in bit 0 whether the
+// face runs the edge against its stored direction (irregular_vertices[e][0] -> [1]).
 inline constexpr std::uint32_t kReversedBit = 1u;
 inline std::uint32_t face_of(std::uint32_t ref) { return ref >> 1; }
 inline bool is_reversed(std::uint32_t ref) { return (ref & kReversedBit) != 0; }
+
+using IndexPair = std::array<std::uint32_t, 2>;
 
 struct Topology {
   // --- query form: what the per-frame pass reads ---
   std::vector<glm::vec3> positions;           // welded, in the mesh's space
   std::vector<std::uint32_t> face_vertices;   // 3 per input triangle, same order as the input
-  std::vector<std::uint32_t> edge_vertices;   // 2 per edge, canonical direction: first < second
-  std::vector<std::uint32_t> edge_face_offsets;  // edges + 1 entries; CSR into edge_faces
-  std::vector<std::uint32_t> edge_faces;         // face references, see face_of / is_reversed
+  // Plane of each face, (n, -n.a) with n = (b - a) x (c - a) scaled by a power of two into
+  // [0.5, 1) (an exact scaling), rounded to float: the light L (homogeneous) is in front iff
+  // dot(plane, L) > 0. Exact for small integer coordinates; elsewhere the sign can differ from
+  // the exact one only for a light within about 1e-7 of the plane (relative to the distance from
+  // the origin), where the face's own shadow is a wedge of that angle. Zero for zero-area faces.
+  std::vector<glm::vec4> face_planes;
+
+  // Regular edges: one face, or two faces running the edge in opposite directions (every edge of
+  // a consistently wound manifold, open or closed). Stored so that the per-frame test is one
+  // comparison: edge_vertices[e] runs in the direction edge_faces[e][0] uses the edge;
+  // edge_faces[e][1] runs it the other way, or is face_count() for a boundary edge (the facing
+  // buffer's extra slot, always 0). edge_vertices is read only for edges that cast a quad.
+  std::vector<IndexPair> edge_faces;
+  std::vector<IndexPair> edge_vertices;
+
+  // Irregular edges: two faces running the edge the same way, or three or more faces. Their
+  // face references (face_of / is_reversed) are in CSR form.
+  std::vector<IndexPair> irregular_vertices;     // lower vertex index first
+  std::vector<std::uint32_t> irregular_offsets;  // irregular edges + 1 entries
+  std::vector<std::uint32_t> irregular_faces;
 
   // --- build products kept for callers ---
   std::vector<std::uint32_t> vertex_remap;  // input vertex index -> welded vertex index
   TopologyReport report;
 
   std::size_t face_count() const { return face_vertices.size() / 3; }
-  std::size_t edge_count() const { return edge_vertices.size() / 2; }
+  std::size_t regular_edge_count() const { return edge_faces.size(); }
+  std::size_t irregular_edge_count() const { return irregular_vertices.size(); }
+  // Edges are numbered regular first, then irregular.
+  std::size_t edge_count() const { return regular_edge_count() + irregular_edge_count(); }
 
-  // Bytes of the flat arrays one volume-generation pass reads (positions, faces, edge table).
+  // Bytes of the flat arrays one side-quad pass reads in full: face planes, regular edge faces,
+  // irregular edges. (Positions and edge_vertices are read only for edges that cast a quad.)
   std::size_t frame_bytes() const;
 };
 

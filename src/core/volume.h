@@ -108,21 +108,29 @@ struct IndexRange {
   std::size_t end = 0;
 };
 
-// facing[f - faces.begin] = +1 if the light is on the side face f's normal points to, -1 if on
-// the other side, 0 if the light lies in the face's plane or the face has zero area. `light` is
-// homogeneous: (x, y, z, 1) a point light, (x, y, z, 0) a directional light shining from
-// direction (x, y, z) towards -(x, y, z). Computed in double from the float positions.
-void compute_facing(const Topology& topo, const glm::vec4& light, IndexRange faces,
-                    std::span<std::int8_t> facing);
+// The weight of every face in [faces.begin, faces.end) for this light, as `generator` counts
+// it, into weights[f - faces.begin]. Its facing first: +1 if the light is on the side face f's
+// normal points to, -1 if on the other side, 0 if the light lies in the face's plane or the face
+// has zero area (computed once per face per light, from Topology::face_planes). The weight is the
+// facing for robust and multiplicity, and 1 for front faces, 0 for the others, for standard.
+// `light` is homogeneous: (x, y, z, 1) a point light, (x, y, z, 0) a directional light shining
+// from direction (x, y, z) towards -(x, y, z). `generator` must be resolved (not automatic).
+void compute_face_weights(const Topology& topo, const glm::vec4& light, Generator generator,
+                          IndexRange faces, std::span<std::int8_t> weights);
 
-// Appends the side quads of edges [edges.begin, edges.end) to out.sides, in edge order.
-// `facing` covers every face of the mesh. `generator` must be resolved (not automatic).
+// The face-weight buffer of a mesh has one slot per face plus one extra slot, always 0, that
+// stands for the missing second face of every boundary edge (Topology::edge_faces).
+inline std::size_t weight_buffer_size(const Topology& topo) { return topo.face_count() + 1; }
+
+// Appends the side quads of edges [edges.begin, edges.end) (regular edges first, then
+// irregular: Topology::edge_count) to out.sides, in edge order. `weights` is the whole mesh's
+// weight buffer (weight_buffer_size entries) for the same generator and light.
 void append_sides(const Topology& topo, const glm::vec4& light, Generator generator,
-                  std::span<const std::int8_t> facing, IndexRange edges, VolumeBuffer& out);
+                  std::span<const std::int8_t> weights, IndexRange edges, VolumeBuffer& out);
 
 // Appends the light and dark caps of faces [faces.begin, faces.end), in face order.
 void append_caps(const Topology& topo, const glm::vec4& light, Generator generator,
-                 std::span<const std::int8_t> facing, IndexRange faces, VolumeBuffer& out);
+                 std::span<const std::int8_t> weights, IndexRange faces, VolumeBuffer& out);
 
 struct VolumeOptions {
   Generator generator = Generator::automatic;
@@ -130,8 +138,8 @@ struct VolumeOptions {
 };
 
 // The whole volume of one mesh for one light, on the calling thread: clears `out`, fills
-// `facing` (resized to the face count; caller-owned scratch) and appends sides, then caps.
+// `weights` (resized to weight_buffer_size; caller-owned scratch) and appends sides, then caps.
 void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOptions& options,
-                  std::vector<std::int8_t>& facing, VolumeBuffer& out);
+                  std::vector<std::int8_t>& weights, VolumeBuffer& out);
 
 }  // namespace shadowvol

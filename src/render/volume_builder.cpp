@@ -27,11 +27,12 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
     const Generator generator = resolve_generator(job.options.generator, topo.report);
     const std::size_t faces = topo.face_count(), edges = topo.edge_count();
 
-    scratch.facing.resize(faces);
+    scratch.weights.resize(weight_buffer_size(topo));
+    scratch.weights.back() = 0;
     tbb::parallel_for(std::size_t{0}, chunk_count(faces), [&](std::size_t c) {
       const IndexRange r = chunk_range(c, faces);
-      compute_facing(topo, job.light, r,
-                     std::span(scratch.facing).subspan(r.begin, r.end - r.begin));
+      compute_face_weights(topo, job.light, generator, r,
+                           std::span(scratch.weights).subspan(r.begin, r.end - r.begin));
     });
 
     // Chunks [0, edge chunks) emit sides, the rest caps: the same order build_volume writes.
@@ -42,9 +43,9 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
       VolumeBuffer& part = scratch.chunks[c];
       part.clear();
       if (c < side_chunks)
-        append_sides(topo, job.light, generator, scratch.facing, chunk_range(c, edges), part);
+        append_sides(topo, job.light, generator, scratch.weights, chunk_range(c, edges), part);
       else
-        append_caps(topo, job.light, generator, scratch.facing,
+        append_caps(topo, job.light, generator, scratch.weights,
                     chunk_range(c - side_chunks, faces), part);
     });
 

@@ -38,7 +38,7 @@ class VolumeBuilder {
 
  private:
   struct Scratch {
-    std::vector<std::int8_t> facing;
+    std::vector<std::int8_t> weights;
     std::vector<VolumeBuffer> chunks;
   };
   std::vector<Scratch> scratch_;  // one per job slot, kept between frames

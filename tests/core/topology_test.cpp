@@ -1,7 +1,7 @@
 // Hand-drawn edge tables and reports: answers worked out on paper (STYLE §6).
 #include <gtest/gtest.h>
 
-#include <map>
+#include <algorithm>
 
 #include "core/topology.h"
 #include "test_meshes.h"
@@ -11,17 +11,26 @@ namespace {
 
 using testing::add_triangle;
 
-// The faces of edge (a, b) as {face, reversed} pairs, looked up by welded vertex indices.
+// The faces of edge (a, b) as {face, runs b -> a} pairs, in face order, whichever list holds it.
 std::vector<std::pair<std::uint32_t, bool>> faces_of(const Topology& t, std::uint32_t a,
                                                      std::uint32_t b) {
-  for (std::size_t e = 0; e < t.edge_count(); ++e)
-    if (t.edge_vertices[2 * e] == std::min(a, b) && t.edge_vertices[2 * e + 1] == std::max(a, b)) {
-      std::vector<std::pair<std::uint32_t, bool>> out;
-      for (std::uint32_t i = t.edge_face_offsets[e]; i < t.edge_face_offsets[e + 1]; ++i)
-        out.emplace_back(face_of(t.edge_faces[i]), is_reversed(t.edge_faces[i]));
-      return out;
-    }
-  return {};
+  std::vector<std::pair<std::uint32_t, bool>> out;
+  for (std::size_t e = 0; e < t.regular_edge_count(); ++e) {
+    const IndexPair v = t.edge_vertices[e];
+    if (std::minmax(v[0], v[1]) != std::minmax(a, b)) continue;
+    const bool first_runs_a_to_b = v[0] == a;
+    out.emplace_back(t.edge_faces[e][0], !first_runs_a_to_b);
+    if (t.edge_faces[e][1] != t.face_count()) out.emplace_back(t.edge_faces[e][1], first_runs_a_to_b);
+  }
+  for (std::size_t e = 0; e < t.irregular_edge_count(); ++e) {
+    const IndexPair v = t.irregular_vertices[e];
+    if (std::minmax(v[0], v[1]) != std::minmax(a, b)) continue;
+    for (std::uint32_t k = t.irregular_offsets[e]; k < t.irregular_offsets[e + 1]; ++k)
+      out.emplace_back(face_of(t.irregular_faces[k]),
+                       is_reversed(t.irregular_faces[k]) == (v[0] == a));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 TEST(Topology, CubeIsAClosedManifold) {
@@ -37,11 +46,17 @@ TEST(Topology, CubeIsAClosedManifold) {
   EXPECT_EQ(r.components, 1u);
   EXPECT_TRUE(r.closed_manifold);
   // Every edge: two faces, one along and one against its canonical direction.
-  for (std::size_t e = 0; e < t.edge_count(); ++e) {
-    ASSERT_EQ(t.edge_face_offsets[e + 1] - t.edge_face_offsets[e], 2u);
-    EXPECT_NE(is_reversed(t.edge_faces[t.edge_face_offsets[e]]),
-              is_reversed(t.edge_faces[t.edge_face_offsets[e] + 1]));
+  EXPECT_EQ(t.irregular_edge_count(), 0u);
+  for (std::size_t e = 0; e < t.regular_edge_count(); ++e) {
+    ASSERT_NE(t.edge_faces[e][1], t.face_count());  // no boundary
+    // The first face runs the edge in its stored direction.
+    const std::uint32_t* v = &t.face_vertices[3 * t.edge_faces[e][0]];
+    bool found = false;
+    for (int k = 0; k < 3; ++k) found |= v[k] == t.edge_vertices[e][0] && v[(k + 1) % 3] == t.edge_vertices[e][1];
+    EXPECT_TRUE(found) << "edge " << e;
   }
+  // Face 0 is (0, 2, 3) on the z = 0 side: normal (0, 0, -1), scaled by 2^-1 into [0.5, 1).
+  EXPECT_EQ(t.face_planes[0], glm::vec4(0, 0, -0.5f, 0));
 }
 
 TEST(Topology, QuadOfTwoTrianglesHasFourBoundaryEdgesAndOneShared) {
@@ -57,8 +72,9 @@ TEST(Topology, QuadOfTwoTrianglesHasFourBoundaryEdgesAndOneShared) {
   ASSERT_EQ(diagonal.size(), 2u);
   EXPECT_EQ(diagonal[0], std::make_pair(0u, true));
   EXPECT_EQ(diagonal[1], std::make_pair(1u, false));
-  // Edge 0-1 belongs to face 0 only, along its direction.
+  // Edge 0-1 belongs to face 0 only, along its direction; its second face is the extra slot.
   EXPECT_EQ(faces_of(t, 0, 1), (std::vector<std::pair<std::uint32_t, bool>>{{0u, false}}));
+  EXPECT_EQ(t.irregular_edge_count(), 0u);
 }
 
 TEST(Topology, ThreeFacesOnOneEdgeAreNonManifold) {
@@ -77,6 +93,7 @@ TEST(Topology, ThreeFacesOnOneEdgeAreNonManifold) {
   EXPECT_FALSE(spine[0].second);
   EXPECT_TRUE(spine[1].second);
   EXPECT_FALSE(spine[2].second);
+  EXPECT_EQ(t.irregular_edge_count(), 1u);  // the spine; the other six are regular
 }
 
 TEST(Topology, TwoFacesRunningOneEdgeTheSameWayAreInconsistent) {
@@ -85,6 +102,8 @@ TEST(Topology, TwoFacesRunningOneEdgeTheSameWayAreInconsistent) {
   add_triangle(m, {0, 0, 0}, {1, 0, 0}, {0, -1, 0});  // flipped: runs 0 -> 1 again
   const Topology t = build_topology(m);
   EXPECT_EQ(t.report.inconsistent_edges, 1u);
+  EXPECT_EQ(t.irregular_edge_count(), 1u);
+  EXPECT_EQ(faces_of(t, 0, 1), (std::vector<std::pair<std::uint32_t, bool>>{{0u, false}, {1u, false}}));
   EXPECT_EQ(t.report.nonmanifold_edges, 0u);
   EXPECT_FALSE(t.report.closed_manifold);
 }
@@ -120,11 +139,21 @@ TEST(Topology, ComponentsCountSeparateShells) {
   EXPECT_TRUE(t.report.closed_manifold);
 }
 
-TEST(Topology, FrameBytesCountsTheFlatArrays) {
-  const Topology t = build_topology(testing::box({0, 0, 0}, {1, 1, 1}));
-  // 8 positions * 12 B + 36 face indices * 4 B + 18 edges * (2 + 1) * 4 B + 1 offset * 4 B
-  // + 36 face references * 4 B.
-  EXPECT_EQ(t.frame_bytes(), 96u + 144u + 216u + 4u + 144u);
+TEST(Topology, FrameBytesCountsTheFlatArraysOfTheSidePass) {
+  const Topology cube = build_topology(testing::box({0, 0, 0}, {1, 1, 1}));
+  // 12 planes of 16 B, 18 regular edges of two 4-byte faces, one irregular offset.
+  EXPECT_EQ(cube.frame_bytes(), 12u * 16u + 18u * 8u + 1u * 4u);
+  // A fan of three faces: 19 regular edges, 1 irregular (vertex pair, 2 offsets, 3 references).
+  const Topology fin = build_topology(testing::adversarial_meshes(1)[6].mesh);
+  ASSERT_EQ(testing::adversarial_meshes(1)[6].name, "fin_nonmanifold");
+  EXPECT_EQ(fin.frame_bytes(), 13u * 16u + 19u * 8u + 8u + 2u * 4u + 3u * 4u);
+}
+
+TEST(Topology, FacePlanesScaleByAPowerOfTwo) {
+  Mesh m;
+  add_triangle(m, {0, 0, 3}, {12, 0, 3}, {0, 12, 3});  // n = (0, 0, 144) -> 144 / 256
+  const Topology t = build_topology(m);
+  EXPECT_EQ(t.face_planes[0], glm::vec4(0, 0, 0.5625f, -1.6875f));
 }
 
 }  // namespace

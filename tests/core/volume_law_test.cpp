@@ -119,8 +119,8 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
                std::mt19937& rng, LawStats& stats) {
   const Topology topo = build_topology(named.mesh);
   VolumeBuffer volume;
-  std::vector<std::int8_t> facing;
-  build_volume(topo, light, {generator, true}, facing, volume);
+  std::vector<std::int8_t> weights;
+  build_volume(topo, light, {generator, true}, weights, volume);
   const Generator used = resolve_generator(generator, topo.report);
   const bool front_only = used == Generator::standard;
   const HPoint l = testing::exact(light);
@@ -144,11 +144,11 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
   // sevenths (w = 7), off the integer planes of the meshes' faces, so few rays meet an edge.
   constexpr int kGrid = 7;
   std::uniform_int_distribution<int> near(-120 * kGrid, 120 * kGrid);
-  // Only faces that are not edge-on to the light: a point behind an edge-on face lies in its
-  // plane, a genuinely ambiguous sample.
+  // Only faces that are not edge-on to the light (weight 0; under standard also the back faces):
+  // a point behind an edge-on face lies in its plane, a genuinely ambiguous sample.
   std::vector<std::size_t> lit_faces;
   for (std::size_t f = 0; f < topo.face_count(); ++f)
-    if (facing[f] != 0) lit_faces.push_back(f);
+    if (weights[f] != 0) lit_faces.push_back(f);
   std::uniform_int_distribution<std::size_t> pick_face(0, std::max<std::size_t>(lit_faces.size(), 1) - 1);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   auto behind_caster = [&]() -> HPoint {
@@ -201,6 +201,12 @@ glm::vec4 random_light(std::mt19937& rng, bool directional) {
   std::uniform_int_distribution<int> p(-160, 160);
   return glm::vec4(p(rng), p(rng), p(rng), 1);
 }
+
+}  // namespace
+
+void PrintTo(Generator g, std::ostream* os) { *os << to_string(g); }
+
+namespace {
 
 class VolumeLaw : public ::testing::TestWithParam<Generator> {};
 

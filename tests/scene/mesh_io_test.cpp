@@ -63,9 +63,18 @@ struct BadFile {
   const char* message;  // what the error must say after "<path>: "
 };
 
+void PrintTo(const BadFile& bad, std::ostream* os) { *os << bad.file; }
+
 class LoadMeshRefuses : public ::testing::TestWithParam<BadFile> {};
 
 TEST_P(LoadMeshRefuses, WithAMessageNamingTheFileAndTheProblem) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer's operator new cannot throw: it ends the process on any allocation it cannot
+  // serve (allocator_may_return_null covers malloc only), so a file that makes assimp try a
+  // 48 GB allocation is checked by the Release run of this test alone.
+  if (std::string(GetParam().file) == "absurd_count.ply")
+    GTEST_SKIP() << "out-of-memory aborts under AddressSanitizer; checked in the Release run";
+#endif
   const auto path = kData / GetParam().file;
   auto loaded = load_mesh(path);
   ASSERT_FALSE(loaded.ok());
