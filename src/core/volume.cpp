@@ -161,6 +161,12 @@ void append_caps(const Topology& topo, const glm::vec4& light, Generator generat
   const bool standard = generator == Generator::standard;
   const bool dark_caps = light.w != 0.0f;
   const std::uint32_t* fv = topo.face_vertices.data();
+  // At most one cap of each kind per face: reserving that bound spares a growing buffer its
+  // repeated reallocation (a no-op once the caller's buffer has grown to size).
+  for (PrimitiveList* list : {&out.light_caps, &out.dark_caps}) {
+    list->vertices.reserve(list->vertices.size() + kTriangleCorners * (faces.end - faces.begin));
+    list->weights.reserve(list->weights.size() + (faces.end - faces.begin));
+  }
   for (std::size_t f = faces.begin; f < faces.end; ++f) {
     const int w = weights[f];
     // robust, multiplicity: a face of weight 0 (zero area, or edge-on) has an empty volume.

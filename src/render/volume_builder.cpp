@@ -8,15 +8,25 @@ namespace shadowvol {
 namespace {
 
 std::size_t chunk_count(std::size_t n) {
-  return (n + VolumeBuilder::kChunk - 1) / VolumeBuilder::kChunk;
+  const std::size_t size = VolumeBuilder::chunk_size(n);
+  return (n + size - 1) / size;
 }
 
 IndexRange chunk_range(std::size_t chunk, std::size_t n) {
-  const std::size_t begin = chunk * VolumeBuilder::kChunk;
-  return {begin, std::min(n, begin + VolumeBuilder::kChunk)};
+  const std::size_t size = VolumeBuilder::chunk_size(n);
+  return {chunk * size, std::min(n, (chunk + 1) * size)};
+}
+
+void reserve_for(PrimitiveList& list, std::size_t primitives, int corners) {
+  list.vertices.reserve(primitives * static_cast<std::size_t>(corners));
+  list.weights.reserve(primitives);
 }
 
 }  // namespace
+
+std::size_t VolumeBuilder::chunk_size(std::size_t items) {
+  return std::clamp(items / kChunksPerPass, kMinChunk, kMaxChunk);
+}
 
 void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
   if (scratch_.size() < jobs.size()) scratch_.resize(jobs.size());
@@ -49,8 +59,20 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
                     chunk_range(c - side_chunks, faces), part);
     });
 
-    job.out->clear();
-    for (const VolumeBuffer& part : scratch.chunks) job.out->append(part);
+    // Join in chunk order. Reserving first keeps a growing first frame from copying its output
+    // again at every doubling.
+    VolumeBuffer& out = *job.out;
+    out.clear();
+    std::size_t sides = 0, light_caps = 0, dark_caps = 0;
+    for (const VolumeBuffer& part : scratch.chunks) {
+      sides += part.sides.size();
+      light_caps += part.light_caps.size();
+      dark_caps += part.dark_caps.size();
+    }
+    reserve_for(out.sides, sides, kQuadCorners);
+    reserve_for(out.light_caps, light_caps, kTriangleCorners);
+    reserve_for(out.dark_caps, dark_caps, kTriangleCorners);
+    for (const VolumeBuffer& part : scratch.chunks) out.append(part);
   });
 }
 

@@ -28,9 +28,14 @@ struct VolumeJob {
 
 class VolumeBuilder {
  public:
-  // Faces or edges per chunk: large enough that a chunk's work dwarfs the scheduling cost
-  // (about 1 us per task), small enough that a 100k-triangle mesh still splits across cores.
-  static constexpr std::size_t kChunk = 16384;
+  // Faces or edges per chunk: about kChunksPerPass chunks per pass, so that even a small mesh
+  // splits across cores, but never so small that scheduling (about 1 us a task) shows, nor so
+  // large that the cores wait for one another at the end of a pass. It depends on the mesh
+  // alone, never on the thread count: that is what keeps the output deterministic.
+  static constexpr std::size_t kChunksPerPass = 16;
+  static constexpr std::size_t kMinChunk = 2048;
+  static constexpr std::size_t kMaxChunk = 32768;
+  static std::size_t chunk_size(std::size_t items);
 
   // Builds every job. Uses the oneTBB arena of the calling thread, so a tbb::global_control or
   // task_arena set up by the caller limits the threads. Jobs must not share an `out` buffer.

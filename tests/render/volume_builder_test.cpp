@@ -23,7 +23,9 @@ void expect_same(const VolumeBuffer& a, const VolumeBuffer& b) {
 TEST(VolumeBuilder, MatchesSerialBuildForAnyThreadCount) {
   // Big enough for several chunks of faces and edges, plus small and open objects.
   std::vector<Topology> topologies;
-  topologies.push_back(build_topology(make_bumpy_torus_with(3 * VolumeBuilder::kChunk + 77)));
+  topologies.push_back(build_topology(make_bumpy_torus_with(50'000)));
+  ASSERT_LT(VolumeBuilder::chunk_size(topologies[0].face_count()) * 8,
+            topologies[0].face_count());  // many chunks of faces, and of edges
   topologies.push_back(build_topology(testing::box({-1, -1, -1}, {1, 1, 1}, false)));
   topologies.push_back(build_topology(testing::adversarial_meshes(3).back().mesh));
   const glm::vec4 lights[] = {{0.3f, 2.0f, 3.0f, 1.0f}, {0.2f, -0.4f, 1.0f, 0.0f}};
