@@ -109,7 +109,7 @@ bool is_collapsed(const std::uint32_t* v) { return v[0] == v[1] || v[1] == v[2] 
 }  // namespace
 
 std::size_t Topology::frame_bytes() const {
-  return face_planes.size() * sizeof(glm::vec4) + edge_faces.size() * sizeof(IndexPair) +
+  return face_planes.size() * 4 * sizeof(float) + edge_faces.size() * sizeof(IndexPair) +
          irregular_vertices.size() * sizeof(IndexPair) +
          irregular_offsets.size() * sizeof(std::uint32_t) +
          irregular_faces.size() * sizeof(std::uint32_t);
@@ -162,7 +162,7 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
     components.unite(v[1], v[2]);
     const glm::dvec3 a(topo.positions[v[0]]), b(topo.positions[v[1]]), c(topo.positions[v[2]]);
     topo.face_planes.push_back(face_plane(a, b, c));
-    if (topo.face_planes.back() == glm::vec4(0.0f)) ++r.degenerate_triangles;
+    if (topo.face_planes[f] == glm::vec4(0.0f)) ++r.degenerate_triangles;
     if (is_collapsed(v)) continue;
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t from = v[k], to = v[(k + 1) % 3];

@@ -51,16 +51,33 @@ inline bool is_reversed(std::uint32_t ref) { return (ref & kReversedBit) != 0; }
 
 using IndexPair = std::array<std::uint32_t, 2>;
 
+// The plane of each face, (n, -n.a) with n = (b - a) x (c - a) scaled by a power of two into
+// [0.5, 1) (an exact scaling), rounded to float: the light L (homogeneous) is in front iff
+// dot(plane, L) > 0. Exact for small integer coordinates; elsewhere the sign can differ from the
+// exact one only for a light within about 1e-7 of the plane (relative to the distance from the
+// origin), where the face's own shadow is a wedge of that angle. Zero for zero-area faces.
+// Structure of arrays: the facing pass walks all faces four or eight to a vector register.
+struct FacePlanes {
+  std::vector<float> x, y, z, w;
+
+  std::size_t size() const { return x.size(); }
+  glm::vec4 operator[](std::size_t f) const { return {x[f], y[f], z[f], w[f]}; }
+  void push_back(const glm::vec4& p) {
+    x.push_back(p.x);
+    y.push_back(p.y);
+    z.push_back(p.z);
+    w.push_back(p.w);
+  }
+  void reserve(std::size_t n) {
+    for (auto* v : {&x, &y, &z, &w}) v->reserve(n);
+  }
+};
+
 struct Topology {
   // --- query form: what the per-frame pass reads ---
   std::vector<glm::vec3> positions;           // welded, in the mesh's space
   std::vector<std::uint32_t> face_vertices;   // 3 per input triangle, same order as the input
-  // Plane of each face, (n, -n.a) with n = (b - a) x (c - a) scaled by a power of two into
-  // [0.5, 1) (an exact scaling), rounded to float: the light L (homogeneous) is in front iff
-  // dot(plane, L) > 0. Exact for small integer coordinates; elsewhere the sign can differ from
-  // the exact one only for a light within about 1e-7 of the plane (relative to the distance from
-  // the origin), where the face's own shadow is a wedge of that angle. Zero for zero-area faces.
-  std::vector<glm::vec4> face_planes;
+  FacePlanes face_planes;
 
   // Regular edges: one face, or two faces running the edge in opposite directions (every edge of
   // a consistently wound manifold, open or closed). Stored so that the per-frame test is one

@@ -15,11 +15,8 @@ inline glm::vec4 at_infinity(const glm::vec3& p, const glm::vec4& light) {
   return glm::vec4(light.w * p - glm::vec3(light), 0.0f);
 }
 
-// Out of line and cold: about one edge in a hundred casts a quad, and inlining this into the
-// edge loop costs the loop its registers.
-[[gnu::noinline, gnu::cold]] void push_quad(const glm::vec3& u, const glm::vec3& v,
-                                            const glm::vec4& light, int weight,
-                                            PrimitiveList& sides) {
+inline void push_quad(const glm::vec3& u, const glm::vec3& v, const glm::vec4& light, int weight,
+                      PrimitiveList& sides) {
   sides.vertices.push_back(glm::vec4(u, 1.0f));
   sides.vertices.push_back(at_infinity(u, light));
   sides.vertices.push_back(at_infinity(v, light));
@@ -39,24 +36,45 @@ void append_sides_for(const Topology& topo, const glm::vec4& light, const std::i
   const glm::vec3* positions = topo.positions.data();
   // Regular edges, the hot loop: the first face runs the edge along its stored direction and the
   // second against it (or is the always-0 extra slot), so the multiplicity is w(first) -
-  // w(second) and almost every edge costs two byte loads and one comparison.
-  const std::size_t regular = topo.regular_edge_count();
-  const std::size_t regular_end = std::min(range.end, regular);
+  // w(second), and almost every edge costs two byte loads and one comparison. Casting edges are
+  // rare and scattered, and each needs its vertex pair and two positions from memory: collected
+  // first, a block at a time without branches, their loads then overlap instead of each costing
+  // a branch miss followed by a chain of cache misses.
+  constexpr std::size_t kBlock = 512;
+  std::uint32_t casting[kBlock];
+  const std::size_t regular_end = std::min(range.end, topo.regular_edge_count());
   const IndexPair* faces = topo.edge_faces.data();
-  for (std::size_t e = range.begin; e < regular_end; ++e) {
-    const int w0 = weights[faces[e][0]], w1 = weights[faces[e][1]];
-    if (w0 == w1) [[likely]] continue;
-    const glm::vec3& u = positions[topo.edge_vertices[e][0]];
-    const glm::vec3& v = positions[topo.edge_vertices[e][1]];
-    if constexpr (kRobust) {  // each face closes its own part: one quad each
-      if (w0 != 0) push_quad(u, v, light, w0, sides);
-      if (w1 != 0) push_quad(u, v, light, -w1, sides);
-    } else {
-      push_quad(u, v, light, w0 - w1, sides);
+  const IndexPair* vertices = topo.edge_vertices.data();
+  for (std::size_t block = range.begin; block < regular_end; block += kBlock) {
+    const std::size_t block_end = std::min(block + kBlock, regular_end);
+    std::size_t count = 0;
+    for (std::size_t e = block; e < block_end; ++e) {
+      casting[count] = static_cast<std::uint32_t>(e);
+      count += weights[faces[e][0]] != weights[faces[e][1]];
+    }
+    // Prefetch in two steps: the vertex pair kAhead edges ahead, the positions of the pair
+    // kAhead / 2 ahead (whose vertex pair was asked for kAhead / 2 iterations ago).
+    constexpr std::size_t kAhead = 16;
+    for (std::size_t k = 0; k < count; ++k) {
+      if (k + kAhead < count) __builtin_prefetch(&vertices[casting[k + kAhead]]);
+      if (k + kAhead / 2 < count) {
+        const IndexPair& ahead = vertices[casting[k + kAhead / 2]];
+        __builtin_prefetch(&positions[ahead[0]]);
+        __builtin_prefetch(&positions[ahead[1]]);
+      }
+      const std::uint32_t e = casting[k];
+      const int w0 = weights[faces[e][0]], w1 = weights[faces[e][1]];
+      const glm::vec3& u = positions[vertices[e][0]];
+      const glm::vec3& v = positions[vertices[e][1]];
+      if constexpr (kRobust) {  // each face closes its own part: one quad each
+        if (w0 != 0) push_quad(u, v, light, w0, sides);
+        if (w1 != 0) push_quad(u, v, light, -w1, sides);
+      } else {
+        push_quad(u, v, light, w0 - w1, sides);
+      }
     }
   }
-  // Irregular edges (same-direction pairs, fans): sum, or for robust one quad per face, as if
-  // the edge were open (GPU Gems 3 §11.3.1 splits such edges in preprocessing).
+  const std::size_t regular = topo.regular_edge_count();
   for (std::size_t e = std::max(range.begin, regular); e < range.end; ++e) {
     const std::size_t i = e - regular;
     const glm::vec3& u = positions[topo.irregular_vertices[i][0]];
@@ -127,22 +145,60 @@ void VolumeBuffer::append(const VolumeBuffer& other) {
   }
 }
 
+namespace {
+
+// The facing of a plane towards a light, in double: float x float products are exact in double,
+// so for small integer coordinates the sign is exact.
+inline int facing_in_double(const glm::vec4& plane, const glm::vec4& light) {
+  const glm::dvec4 p(plane), l(light);
+  const double side = (p.x * l.x + p.y * l.y) + (p.z * l.z + p.w * l.w);
+  return (side > 0.0) - (side < 0.0);
+}
+
+// A face-weight value that no generator produces: "the float test could not decide".
+constexpr std::int8_t kUndecided = 2;
+
+}  // namespace
+
 void compute_face_weights(const Topology& topo, const glm::vec4& light, Generator generator,
                           IndexRange faces, std::span<std::int8_t> weights) {
   assert(generator != Generator::automatic && weights.size() >= faces.end - faces.begin);
-  // float x float products are exact in double, so for the small integers of the tests the sign
-  // is exact; the loop reads one 16-byte plane per face, sequentially, and vectorises.
-  const glm::dvec4 l(light);
-  const glm::vec4* planes = topo.face_planes.data();
   // standard counts only light-facing faces (Intel; GPU Gems 3 §11.2.2); robust and
   // multiplicity count every face with its sign (GPU Gems 3 §11.3.1; Kim et al. §1.2).
   const int lowest = generator == Generator::standard ? 0 : -1;
-  for (std::size_t f = faces.begin; f < faces.end; ++f) {
-    const glm::dvec4 p(planes[f]);
-    const double side = (p.x * l.x + p.y * l.y) + (p.z * l.z + p.w * l.w);
-    const int facing = (side > 0.0) - (side < 0.0);
-    weights[f - faces.begin] = static_cast<std::int8_t>(std::max(facing, lowest));
+  const std::size_t n = faces.end - faces.begin;
+  const float* __restrict px = topo.face_planes.x.data() + faces.begin;
+  const float* __restrict py = topo.face_planes.y.data() + faces.begin;
+  const float* __restrict pz = topo.face_planes.z.data() + faces.begin;
+  const float* __restrict pw = topo.face_planes.w.data() + faces.begin;
+  std::int8_t* __restrict out = weights.data();
+  // A float dot product with a certified error bound decides almost every face, several to a
+  // vector register (the loop has no branches, so it vectorises); the few it cannot (a light
+  // within rounding of the plane) are decided again in double. Bound: each of the four terms goes
+  // through at most three roundings (one product, two sums), so |error| <= 3u * sum |terms| with
+  // u = 2^-24; 8u leaves room for the rounding of the bound itself, and FLT_MIN for underflow.
+  // A NaN (from a light so far away that a product overflows) is undecided too.
+  constexpr float kRelative = 8.0f * 5.9604645e-8f;
+  constexpr float kAbsolute = 1.17549435e-38f;
+  const float lx = light.x, ly = light.y, lz = light.z, lw = light.w;
+  int undecided = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float tx = px[i] * lx, ty = py[i] * ly, tz = pz[i] * lz, tw = pw[i] * lw;
+    const float side = (tx + ty) + (tz + tw);
+    const float bound = ((std::abs(tx) + std::abs(ty)) + (std::abs(tz) + std::abs(tw))) * kRelative;
+    const bool zero_area = (px[i] == 0.0f) & (py[i] == 0.0f) & (pz[i] == 0.0f);  // exactly 0
+    const bool sure = (std::abs(side) > bound + kAbsolute) | zero_area;
+    const int facing = (side > 0.0f) - (side < 0.0f);
+    const int weight = std::max(facing, lowest);
+    const int unsure = !sure;
+    out[i] = static_cast<std::int8_t>(weight + unsure * (kUndecided - weight));  // no branch
+    undecided |= unsure;
   }
+  if (!undecided) return;
+  for (std::size_t i = 0; i < n; ++i)
+    if (out[i] == kUndecided)
+      out[i] = static_cast<std::int8_t>(
+          std::max(facing_in_double(topo.face_planes[faces.begin + i], light), lowest));
 }
 
 void append_sides(const Topology& topo, const glm::vec4& light, Generator generator,

@@ -59,6 +59,23 @@ TEST(Volume, EdgeOnTriangleCastsNothing) {
   EXPECT_EQ(build(tri, {1, 0, 0, 0}, Generator::robust).primitive_count(), 0u);
 }
 
+TEST(Volume, FacingIsRightWhereFloatRoundingCannotTell) {
+  // A face a million units out and a light 1/16 above or below its plane: the float dot product
+  // cancels to within its own rounding, so the pass must decide these faces in double.
+  Mesh tri;
+  testing::add_triangle(tri, {0, 0, 1e6f}, {1, 0, 1e6f}, {0, 1, 1e6f});  // normal +z
+  const Topology topo = build_topology(tri);
+  std::vector<std::int8_t> weights(weight_buffer_size(topo), 0);
+  compute_face_weights(topo, {0, 0, 1e6f + 0.0625f, 1}, Generator::multiplicity, {0, 1}, weights);
+  EXPECT_EQ(weights[0], 1);
+  compute_face_weights(topo, {0, 0, 1e6f - 0.0625f, 1}, Generator::multiplicity, {0, 1}, weights);
+  EXPECT_EQ(weights[0], -1);
+  compute_face_weights(topo, {5, 7, 1e6f, 1}, Generator::multiplicity, {0, 1}, weights);
+  EXPECT_EQ(weights[0], 0);  // in the plane
+  compute_face_weights(topo, {0, 0, 1e6f - 0.0625f, 1}, Generator::standard, {0, 1}, weights);
+  EXPECT_EQ(weights[0], 0);  // standard: back faces weigh 0
+}
+
 TEST(Volume, DirectionalLightsHaveNoDarkCaps) {
   Mesh tri;
   testing::add_triangle(tri, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
