@@ -1,7 +1,7 @@
 // shadowvol_bench: silhouette + volume generation throughput (Google Benchmark).
 //
 // For bumpy tori of 10k, 100k and 1M triangles, on 1 and 2 threads, with and without caps:
-//   tri/s        triangles per second through VolumeBuilder (facing, sides, caps, join)
+//   tri/s        triangles per second through VolumeBuilder (face weights, sides, caps)
 //   read_GB/s    bytes of the flat arrays the pass reads (Topology::frame_bytes) per second
 //   stream_GB/s  the machine's streaming read bandwidth over a buffer of those same bytes, on
 //                the same threads, measured in the same run just before the timed loop

@@ -15,13 +15,25 @@ inline glm::vec4 at_infinity(const glm::vec3& p, const glm::vec4& light) {
   return glm::vec4(light.w * p - glm::vec3(light), 0.0f);
 }
 
-inline void push_quad(const glm::vec3& u, const glm::vec3& v, const glm::vec4& light, int weight,
-                      PrimitiveList& sides) {
-  sides.vertices.push_back(glm::vec4(u, 1.0f));
-  sides.vertices.push_back(at_infinity(u, light));
-  sides.vertices.push_back(at_infinity(v, light));
-  sides.vertices.push_back(glm::vec4(v, 1.0f));
-  sides.weights.push_back(weight);
+inline void write_quad(const glm::vec3& u, const glm::vec3& v, const glm::vec4& light, int weight,
+                       PrimitiveSpan& out) {
+  out.vertices[0] = glm::vec4(u, 1.0f);
+  out.vertices[1] = at_infinity(u, light);
+  out.vertices[2] = at_infinity(v, light);
+  out.vertices[3] = glm::vec4(v, 1.0f);
+  out.weights[0] = weight;
+  out.vertices += kQuadCorners;
+  out.weights += 1;
+}
+
+inline void write_triangle(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, int weight,
+                           PrimitiveSpan& out) {
+  out.vertices[0] = a;
+  out.vertices[1] = b;
+  out.vertices[2] = c;
+  out.weights[0] = weight;
+  out.vertices += kTriangleCorners;
+  out.weights += 1;
 }
 
 // The signed contribution of one face to an irregular edge's multiplicity (Kim et al. §1.2).
@@ -30,77 +42,36 @@ inline int edge_term(const std::int8_t* weights, std::uint32_t ref) {
   return is_reversed(ref) ? -w : w;
 }
 
-template <bool kRobust>
-void append_sides_for(const Topology& topo, const glm::vec4& light, const std::int8_t* weights,
-                      IndexRange range, PrimitiveList& sides) {
-  const glm::vec3* positions = topo.positions.data();
-  // Regular edges, the hot loop: the first face runs the edge along its stored direction and the
-  // second against it (or is the always-0 extra slot), so the multiplicity is w(first) -
-  // w(second), and almost every edge costs two byte loads and one comparison. Casting edges are
-  // rare and scattered, and each needs its vertex pair and two positions from memory: collected
-  // first, a block at a time without branches, their loads then overlap instead of each costing
-  // a branch miss followed by a chain of cache misses.
-  constexpr std::size_t kBlock = 512;
-  std::uint32_t casting[kBlock];
-  const std::size_t regular_end = std::min(range.end, topo.regular_edge_count());
-  const IndexPair* faces = topo.edge_faces.data();
-  const IndexPair* vertices = topo.edge_vertices.data();
-  for (std::size_t block = range.begin; block < regular_end; block += kBlock) {
-    const std::size_t block_end = std::min(block + kBlock, regular_end);
-    std::size_t count = 0;
-    for (std::size_t e = block; e < block_end; ++e) {
-      casting[count] = static_cast<std::uint32_t>(e);
-      count += weights[faces[e][0]] != weights[faces[e][1]];
-    }
-    // Prefetch in two steps: the vertex pair kAhead edges ahead, the positions of the pair
-    // kAhead / 2 ahead (whose vertex pair was asked for kAhead / 2 iterations ago).
-    constexpr std::size_t kAhead = 16;
-    for (std::size_t k = 0; k < count; ++k) {
-      if (k + kAhead < count) __builtin_prefetch(&vertices[casting[k + kAhead]]);
-      if (k + kAhead / 2 < count) {
-        const IndexPair& ahead = vertices[casting[k + kAhead / 2]];
-        __builtin_prefetch(&positions[ahead[0]]);
-        __builtin_prefetch(&positions[ahead[1]]);
-      }
-      const std::uint32_t e = casting[k];
-      const int w0 = weights[faces[e][0]], w1 = weights[faces[e][1]];
-      const glm::vec3& u = positions[vertices[e][0]];
-      const glm::vec3& v = positions[vertices[e][1]];
-      if constexpr (kRobust) {  // each face closes its own part: one quad each
-        if (w0 != 0) push_quad(u, v, light, w0, sides);
-        if (w1 != 0) push_quad(u, v, light, -w1, sides);
-      } else {
-        push_quad(u, v, light, w0 - w1, sides);
-      }
-    }
-  }
-  const std::size_t regular = topo.regular_edge_count();
-  for (std::size_t e = std::max(range.begin, regular); e < range.end; ++e) {
-    const std::size_t i = e - regular;
-    const glm::vec3& u = positions[topo.irregular_vertices[i][0]];
-    const glm::vec3& v = positions[topo.irregular_vertices[i][1]];
-    int multiplicity = 0;
-    for (std::uint32_t k = topo.irregular_offsets[i]; k < topo.irregular_offsets[i + 1]; ++k) {
-      const int term = edge_term(weights, topo.irregular_faces[k]);
-      if constexpr (kRobust) {
-        if (term != 0) push_quad(u, v, light, term, sides);
-      } else {
-        multiplicity += term;
-      }
-    }
-    if (multiplicity != 0) push_quad(u, v, light, multiplicity, sides);
-  }
+// The face references of irregular edge i.
+inline std::span<const std::uint32_t> irregular_refs(const Topology& topo, std::size_t i) {
+  const std::uint32_t first = topo.irregular_offsets[i], last = topo.irregular_offsets[i + 1];
+  return std::span(topo.irregular_faces).subspan(first, last - first);
 }
 
-void push_triangle(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, int weight,
-                   PrimitiveList& list) {
-  list.vertices.push_back(a);
-  list.vertices.push_back(b);
-  list.vertices.push_back(c);
-  list.weights.push_back(weight);
+// The weights of a face's light cap and dark cap. robust, multiplicity: a face of weight 0
+// (zero area, or edge-on) has an empty volume. standard: front faces cap the light side, the
+// others the dark side (closed meshes only; the dark cap of an edge-on face is a zero-area
+// triangle at infinity, of a zero-area face nothing, so those are left out). No dark caps for a
+// directional light: every vertex goes to the same point at infinity.
+struct CapWeights {
+  int light;
+  int dark;
+};
+inline CapWeights cap_weights(const Topology& topo, bool standard, bool point_light,
+                              std::int8_t w, std::size_t f) {
+  if (!standard) return {w, point_light ? -w : 0};
+  const bool back = w == 0 && topo.face_planes[f] != glm::vec4(0.0f);
+  return {w, point_light && back ? 1 : 0};
 }
 
 }  // namespace
+
+PrimitiveSpan PrimitiveList::grow(std::size_t primitives, int corners) {
+  const std::size_t vertex_start = vertices.size(), weight_start = weights.size();
+  vertices.resize(vertex_start + primitives * static_cast<std::size_t>(corners));
+  weights.resize(weight_start + primitives);
+  return {vertices.data() + vertex_start, weights.data() + weight_start};
+}
 
 std::string_view to_string(Generator generator) {
   switch (generator) {
@@ -134,15 +105,6 @@ Expected<void> check_generator(Generator requested, const TopologyReport& report
                     std::to_string(report.nonmanifold_edges) + " non-manifold and " +
                     std::to_string(report.inconsistent_edges) +
                     " inconsistently oriented edges; use robust, multiplicity or auto");
-}
-
-void VolumeBuffer::append(const VolumeBuffer& other) {
-  for (auto [to, from] : {std::pair{&sides, &other.sides},
-                          std::pair{&light_caps, &other.light_caps},
-                          std::pair{&dark_caps, &other.dark_caps}}) {
-    to->vertices.insert(to->vertices.end(), from->vertices.begin(), from->vertices.end());
-    to->weights.insert(to->weights.end(), from->weights.begin(), from->weights.end());
-  }
 }
 
 namespace {
@@ -201,58 +163,154 @@ void compute_face_weights(const Topology& topo, const glm::vec4& light, Generato
           std::max(facing_in_double(topo.face_planes[faces.begin + i], light), lowest));
 }
 
-void append_sides(const Topology& topo, const glm::vec4& light, Generator generator,
-                  std::span<const std::int8_t> weights, IndexRange edges, VolumeBuffer& out) {
+std::size_t find_casting_edges(const Topology& topo, Generator generator,
+                               std::span<const std::int8_t> weights, IndexRange edges,
+                               std::vector<std::uint32_t>& casting) {
   assert(generator != Generator::automatic);
   assert(weights.size() == weight_buffer_size(topo) && weights.back() == 0);
-  if (generator == Generator::robust)
-    append_sides_for<true>(topo, light, weights.data(), edges, out.sides);
-  else
-    append_sides_for<false>(topo, light, weights.data(), edges, out.sides);
+  const bool robust = generator == Generator::robust;
+  const std::int8_t* w = weights.data();
+  std::size_t quads = 0;
+  // Regular edges, the hot loop: the first face runs the edge along its stored direction and the
+  // second against it (or is the always-0 extra slot), so the multiplicity is w(first) -
+  // w(second) and almost every edge costs two byte loads and one comparison. Collected a block
+  // at a time without branches: casting edges are rare and scattered, and a branch per edge
+  // would miss at every one of them.
+  constexpr std::size_t kBlock = 512;
+  std::uint32_t block_casting[kBlock];
+  const IndexPair* faces = topo.edge_faces.data();
+  const std::size_t regular_end = std::min(edges.end, topo.regular_edge_count());
+  for (std::size_t block = edges.begin; block < regular_end; block += kBlock) {
+    const std::size_t block_end = std::min(block + kBlock, regular_end);
+    std::size_t count = 0;
+#pragma GCC unroll 4
+    for (std::size_t e = block; e < block_end; ++e) {
+      block_casting[count] = static_cast<std::uint32_t>(e);
+      count += w[faces[e][0]] != w[faces[e][1]];
+    }
+    casting.insert(casting.end(), block_casting, block_casting + count);
+    quads += count;
+    if (robust)  // each face closes its own part: one quad per face with a non-zero weight
+      for (std::size_t k = 0; k < count; ++k)
+        quads += (w[faces[block_casting[k]][0]] != 0) + (w[faces[block_casting[k]][1]] != 0) - 1;
+  }
+  // Irregular edges (same-direction pairs, fans): their terms summed, or for robust one quad per
+  // face, as if the edge were open (GPU Gems 3 §11.3.1 splits such edges in preprocessing).
+  const std::size_t regular = topo.regular_edge_count();
+  for (std::size_t e = std::max(edges.begin, regular); e < edges.end; ++e) {
+    int multiplicity = 0;
+    std::size_t terms = 0;
+    for (std::uint32_t ref : irregular_refs(topo, e - regular)) {
+      const int term = edge_term(w, ref);
+      multiplicity += term;
+      terms += term != 0;
+    }
+    const std::size_t edge_quads = robust ? terms : (multiplicity != 0 ? 1 : 0);
+    if (edge_quads > 0) casting.push_back(static_cast<std::uint32_t>(e));
+    quads += edge_quads;
+  }
+  return quads;
 }
 
-void append_caps(const Topology& topo, const glm::vec4& light, Generator generator,
-                 std::span<const std::int8_t> weights, IndexRange faces, VolumeBuffer& out) {
+void write_sides(const Topology& topo, const glm::vec4& light, Generator generator,
+                 std::span<const std::int8_t> weights, std::span<const std::uint32_t> casting,
+                 PrimitiveSpan out) {
   assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
-  const bool standard = generator == Generator::standard;
-  const bool dark_caps = light.w != 0.0f;
-  const std::uint32_t* fv = topo.face_vertices.data();
-  // At most one cap of each kind per face: reserving that bound spares a growing buffer its
-  // repeated reallocation (a no-op once the caller's buffer has grown to size).
-  for (PrimitiveList* list : {&out.light_caps, &out.dark_caps}) {
-    list->vertices.reserve(list->vertices.size() + kTriangleCorners * (faces.end - faces.begin));
-    list->weights.reserve(list->weights.size() + (faces.end - faces.begin));
+  const bool robust = generator == Generator::robust;
+  const std::int8_t* w = weights.data();
+  const glm::vec3* positions = topo.positions.data();
+  const IndexPair* faces = topo.edge_faces.data();
+  const IndexPair* vertices = topo.edge_vertices.data();
+  const std::size_t regular = topo.regular_edge_count();
+  // Each casting edge needs its vertex pair and two positions from far-apart places in memory:
+  // prefetch in two steps, the pair kAhead edges ahead, the positions kAhead / 2 ahead (whose
+  // pair was asked for kAhead / 2 iterations ago), so that the misses overlap.
+  constexpr std::size_t kAhead = 16;
+  for (std::size_t k = 0; k < casting.size(); ++k) {
+    if (k + kAhead < casting.size() && casting[k + kAhead] < regular)
+      __builtin_prefetch(&vertices[casting[k + kAhead]]);
+    if (k + kAhead / 2 < casting.size() && casting[k + kAhead / 2] < regular) {
+      const IndexPair& ahead = vertices[casting[k + kAhead / 2]];
+      __builtin_prefetch(&positions[ahead[0]]);
+      __builtin_prefetch(&positions[ahead[1]]);
+    }
+    const std::uint32_t e = casting[k];
+    if (e < regular) {
+      const int w0 = w[faces[e][0]], w1 = w[faces[e][1]];
+      const glm::vec3& u = positions[vertices[e][0]];
+      const glm::vec3& v = positions[vertices[e][1]];
+      if (!robust) {
+        write_quad(u, v, light, w0 - w1, out);
+      } else {
+        if (w0 != 0) write_quad(u, v, light, w0, out);
+        if (w1 != 0) write_quad(u, v, light, -w1, out);
+      }
+      continue;
+    }
+    const std::size_t i = e - regular;
+    const glm::vec3& u = positions[topo.irregular_vertices[i][0]];
+    const glm::vec3& v = positions[topo.irregular_vertices[i][1]];
+    int multiplicity = 0;
+    for (std::uint32_t ref : irregular_refs(topo, i)) {
+      const int term = edge_term(w, ref);
+      if (robust && term != 0) write_quad(u, v, light, term, out);
+      multiplicity += term;
+    }
+    if (!robust) write_quad(u, v, light, multiplicity, out);
   }
+}
+
+CapCount count_caps(const Topology& topo, const glm::vec4& light, Generator generator,
+                    std::span<const std::int8_t> weights, IndexRange faces) {
+  assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
+  const bool standard = generator == Generator::standard, point_light = light.w != 0.0f;
+  CapCount count;
   for (std::size_t f = faces.begin; f < faces.end; ++f) {
-    const int w = weights[f];
-    // robust, multiplicity: a face of weight 0 (zero area, or edge-on) has an empty volume.
-    // standard: front faces cap the light side, the others the dark side (closed meshes only;
-    // the dark cap of an edge-on face is a zero-area triangle at infinity, of a zero-area face
-    // nothing at all, so those two are left out).
-    const int light_weight = w;
-    const int dark_weight =
-        standard ? (w == 0 && topo.face_planes[f] != glm::vec4(0.0f) ? 1 : 0) : -w;
-    if (light_weight == 0 && dark_weight == 0) continue;
+    const CapWeights c = cap_weights(topo, standard, point_light, weights[f], f);
+    count.light += c.light != 0;
+    count.dark += c.dark != 0;
+  }
+  return count;
+}
+
+void write_caps(const Topology& topo, const glm::vec4& light, Generator generator,
+                std::span<const std::int8_t> weights, IndexRange faces, PrimitiveSpan light_caps,
+                PrimitiveSpan dark_caps) {
+  assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
+  const bool standard = generator == Generator::standard, point_light = light.w != 0.0f;
+  const std::uint32_t* fv = topo.face_vertices.data();
+  for (std::size_t f = faces.begin; f < faces.end; ++f) {
+    const CapWeights c = cap_weights(topo, standard, point_light, weights[f], f);
+    if (c.light == 0 && c.dark == 0) continue;
     const glm::vec3& a = topo.positions[fv[3 * f]];
     const glm::vec3& b = topo.positions[fv[3 * f + 1]];
-    const glm::vec3& c = topo.positions[fv[3 * f + 2]];
-    if (light_weight != 0)
-      push_triangle(glm::vec4(a, 1.0f), glm::vec4(b, 1.0f), glm::vec4(c, 1.0f), light_weight,
-                    out.light_caps);
-    if (dark_caps && dark_weight != 0)
-      push_triangle(at_infinity(a, light), at_infinity(b, light), at_infinity(c, light),
-                    dark_weight, out.dark_caps);
+    const glm::vec3& d = topo.positions[fv[3 * f + 2]];
+    if (c.light != 0)
+      write_triangle(glm::vec4(a, 1.0f), glm::vec4(b, 1.0f), glm::vec4(d, 1.0f), c.light,
+                     light_caps);
+    if (c.dark != 0)
+      write_triangle(at_infinity(a, light), at_infinity(b, light), at_infinity(d, light), c.dark,
+                     dark_caps);
   }
 }
 
 void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOptions& options,
-                  std::vector<std::int8_t>& weights, VolumeBuffer& out) {
+                  VolumeScratch& scratch, VolumeBuffer& out) {
   const Generator generator = resolve_generator(options.generator, topo.report);
   out.clear();
-  weights.assign(weight_buffer_size(topo), 0);
-  compute_face_weights(topo, light, generator, {0, topo.face_count()}, weights);
-  append_sides(topo, light, generator, weights, {0, topo.edge_count()}, out);
-  if (options.caps) append_caps(topo, light, generator, weights, {0, topo.face_count()}, out);
+  scratch.weights.assign(weight_buffer_size(topo), 0);
+  compute_face_weights(topo, light, generator, {0, topo.face_count()}, scratch.weights);
+  scratch.casting.clear();
+  const std::size_t quads = find_casting_edges(topo, generator, scratch.weights,
+                                               {0, topo.edge_count()}, scratch.casting);
+  write_sides(topo, light, generator, scratch.weights, scratch.casting,
+              out.sides.grow(quads, kQuadCorners));
+  if (!options.caps) return;
+  const IndexRange all_faces{0, topo.face_count()};
+  const CapCount caps = count_caps(topo, light, generator, scratch.weights, all_faces);
+  write_caps(topo, light, generator, scratch.weights, all_faces,
+             out.light_caps.grow(caps.light, kTriangleCorners),
+             out.dark_caps.grow(caps.dark, kTriangleCorners));
 }
 
 }  // namespace shadowvol

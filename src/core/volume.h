@@ -40,8 +40,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -65,14 +68,47 @@ Generator resolve_generator(Generator requested, const TopologyReport& report);
 Expected<void> check_generator(Generator requested, const TopologyReport& report,
                                std::string_view source);
 
+// Allocates like std::allocator but leaves new elements of trivial types uninitialised on
+// resize: a volume list is resized to its final size and then written in full, so zeroing it
+// first would write every byte twice.
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}  // NOLINT
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;  // default-, not value-initialised
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+template <class T>
+using VolumeVector = std::vector<T, UninitializedAllocator<T>>;
+
+// Where a writer puts primitives: `vertices` has room for kCorners per primitive, `weights` one.
+struct PrimitiveSpan {
+  glm::vec4* vertices = nullptr;
+  std::int32_t* weights = nullptr;
+};
+
 // A list of volume primitives of one kind: `vertices` holds kCorners homogeneous vertices per
 // primitive, `weights` one signed weight per primitive.
 struct PrimitiveList {
-  std::vector<glm::vec4> vertices;
-  std::vector<std::int32_t> weights;
+  VolumeVector<glm::vec4> vertices;
+  VolumeVector<std::int32_t> weights;
 
   std::size_t size() const { return weights.size(); }
   void clear() { vertices.clear(); weights.clear(); }
+  // Makes room for `primitives` more of `corners` vertices each, uninitialised, and says where.
+  PrimitiveSpan grow(std::size_t primitives, int corners);
 };
 
 // The caller owns it and reuses it from frame to frame: clear() keeps the capacity, so a frame
@@ -93,8 +129,6 @@ struct VolumeBuffer {
   std::size_t primitive_count() const {
     return sides.size() + light_caps.size() + dark_caps.size();
   }
-  // Appends `other` after this buffer's primitives of each kind.
-  void append(const VolumeBuffer& other);
 };
 
 inline constexpr int kQuadCorners = 4;
@@ -122,24 +156,47 @@ void compute_face_weights(const Topology& topo, const glm::vec4& light, Generato
 // stands for the missing second face of every boundary edge (Topology::edge_faces).
 inline std::size_t weight_buffer_size(const Topology& topo) { return topo.face_count() + 1; }
 
-// Appends the side quads of edges [edges.begin, edges.end) (regular edges first, then
-// irregular: Topology::edge_count) to out.sides, in edge order. `weights` is the whole mesh's
-// weight buffer (weight_buffer_size entries) for the same generator and light.
-void append_sides(const Topology& topo, const glm::vec4& light, Generator generator,
-                  std::span<const std::int8_t> weights, IndexRange edges, VolumeBuffer& out);
+// Side quads in two steps, so that threads can each write their part of one output in place.
+// Edges are numbered regular first, then irregular (Topology::edge_count); `weights` is the
+// whole mesh's weight buffer (weight_buffer_size entries) for the same generator and light.
+//
+// find_casting_edges appends, in edge order, the edges of `edges` that cast side quads to
+// `casting` and returns how many quads they cast (one each; robust: one per face term).
+std::size_t find_casting_edges(const Topology& topo, Generator generator,
+                               std::span<const std::int8_t> weights, IndexRange edges,
+                               std::vector<std::uint32_t>& casting);
+// write_sides writes the quads of `casting`, in order, to `out` (room for the count
+// find_casting_edges returned).
+void write_sides(const Topology& topo, const glm::vec4& light, Generator generator,
+                 std::span<const std::int8_t> weights, std::span<const std::uint32_t> casting,
+                 PrimitiveSpan out);
 
-// Appends the light and dark caps of faces [faces.begin, faces.end), in face order.
-void append_caps(const Topology& topo, const glm::vec4& light, Generator generator,
-                 std::span<const std::int8_t> weights, IndexRange faces, VolumeBuffer& out);
+// Caps in two steps likewise: count_caps says how many light and dark caps the faces in
+// `faces` have, write_caps writes them in face order.
+struct CapCount {
+  std::size_t light = 0;
+  std::size_t dark = 0;
+};
+CapCount count_caps(const Topology& topo, const glm::vec4& light, Generator generator,
+                    std::span<const std::int8_t> weights, IndexRange faces);
+void write_caps(const Topology& topo, const glm::vec4& light, Generator generator,
+                std::span<const std::int8_t> weights, IndexRange faces, PrimitiveSpan light_caps,
+                PrimitiveSpan dark_caps);
 
 struct VolumeOptions {
   Generator generator = Generator::automatic;
   bool caps = true;  // only z-fail needs caps; z-pass draws the sides alone
 };
 
-// The whole volume of one mesh for one light, on the calling thread: clears `out`, fills
-// `weights` (resized to weight_buffer_size; caller-owned scratch) and appends sides, then caps.
+// Per-frame scratch memory of build_volume, owned by the caller and reused between frames.
+struct VolumeScratch {
+  std::vector<std::int8_t> weights;   // the face weights of the last build
+  std::vector<std::uint32_t> casting;
+};
+
+// The whole volume of one mesh for one light, on the calling thread: clears `out` and fills it
+// with sides, then (if options.caps) light and dark caps.
 void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOptions& options,
-                  std::vector<std::int8_t>& weights, VolumeBuffer& out);
+                  VolumeScratch& scratch, VolumeBuffer& out);
 
 }  // namespace shadowvol

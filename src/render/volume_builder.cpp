@@ -17,11 +17,6 @@ IndexRange chunk_range(std::size_t chunk, std::size_t n) {
   return {chunk * size, std::min(n, (chunk + 1) * size)};
 }
 
-void reserve_for(PrimitiveList& list, std::size_t primitives, int corners) {
-  list.vertices.reserve(primitives * static_cast<std::size_t>(corners));
-  list.weights.reserve(primitives);
-}
-
 }  // namespace
 
 std::size_t VolumeBuilder::chunk_size(std::size_t items) {
@@ -36,43 +31,64 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
     Scratch& scratch = scratch_[j];
     const Generator generator = resolve_generator(job.options.generator, topo.report);
     const std::size_t faces = topo.face_count(), edges = topo.edge_count();
+    const std::size_t face_chunks = chunk_count(faces), edge_chunks = chunk_count(edges);
+    const std::size_t cap_chunks = job.options.caps ? face_chunks : 0;
 
+    // 1. Face weights, once per face.
     scratch.weights.resize(weight_buffer_size(topo));
     scratch.weights.back() = 0;
-    tbb::parallel_for(std::size_t{0}, chunk_count(faces), [&](std::size_t c) {
+    tbb::parallel_for(std::size_t{0}, face_chunks, [&](std::size_t c) {
       const IndexRange r = chunk_range(c, faces);
       compute_face_weights(topo, job.light, generator, r,
                            std::span(scratch.weights).subspan(r.begin, r.end - r.begin));
     });
 
-    // Chunks [0, edge chunks) emit sides, the rest caps: the same order build_volume writes.
-    const std::size_t side_chunks = chunk_count(edges);
-    const std::size_t cap_chunks = job.options.caps ? chunk_count(faces) : 0;
-    scratch.chunks.resize(side_chunks + cap_chunks);
-    tbb::parallel_for(std::size_t{0}, side_chunks + cap_chunks, [&](std::size_t c) {
-      VolumeBuffer& part = scratch.chunks[c];
-      part.clear();
-      if (c < side_chunks)
-        append_sides(topo, job.light, generator, scratch.weights, chunk_range(c, edges), part);
-      else
-        append_caps(topo, job.light, generator, scratch.weights,
-                    chunk_range(c - side_chunks, faces), part);
+    // 2. What each chunk will emit: chunks [0, edge_chunks) sides, the rest caps.
+    scratch.casting.resize(edge_chunks);
+    scratch.quads.assign(edge_chunks, 0);
+    scratch.caps.assign(cap_chunks, {});
+    tbb::parallel_for(std::size_t{0}, edge_chunks + cap_chunks, [&](std::size_t c) {
+      if (c < edge_chunks) {
+        scratch.casting[c].clear();
+        scratch.quads[c] = find_casting_edges(topo, generator, scratch.weights,
+                                              chunk_range(c, edges), scratch.casting[c]);
+      } else {
+        scratch.caps[c - edge_chunks] = count_caps(topo, job.light, generator, scratch.weights,
+                                                   chunk_range(c - edge_chunks, faces));
+      }
     });
 
-    // Join in chunk order. Reserving first keeps a growing first frame from copying its output
-    // again at every doubling.
+    // 3. Room for all of it, then every chunk writes its part at its own offset.
     VolumeBuffer& out = *job.out;
     out.clear();
-    std::size_t sides = 0, light_caps = 0, dark_caps = 0;
-    for (const VolumeBuffer& part : scratch.chunks) {
-      sides += part.sides.size();
-      light_caps += part.light_caps.size();
-      dark_caps += part.dark_caps.size();
-    }
-    reserve_for(out.sides, sides, kQuadCorners);
-    reserve_for(out.light_caps, light_caps, kTriangleCorners);
-    reserve_for(out.dark_caps, dark_caps, kTriangleCorners);
-    for (const VolumeBuffer& part : scratch.chunks) out.append(part);
+    std::size_t quads = 0, light_caps = 0, dark_caps = 0;
+    for (std::size_t q : scratch.quads) quads += q;
+    for (const CapCount& c : scratch.caps) light_caps += c.light, dark_caps += c.dark;
+    const PrimitiveSpan sides_at = out.sides.grow(quads, kQuadCorners);
+    const PrimitiveSpan light_at = out.light_caps.grow(light_caps, kTriangleCorners);
+    const PrimitiveSpan dark_at = out.dark_caps.grow(dark_caps, kTriangleCorners);
+    auto advance = [](PrimitiveSpan at, std::size_t primitives, int corners) {
+      return PrimitiveSpan{at.vertices + primitives * static_cast<std::size_t>(corners),
+                           at.weights + primitives};
+    };
+    tbb::parallel_for(std::size_t{0}, edge_chunks + cap_chunks, [&](std::size_t c) {
+      if (c < edge_chunks) {
+        std::size_t before = 0;
+        for (std::size_t k = 0; k < c; ++k) before += scratch.quads[k];
+        write_sides(topo, job.light, generator, scratch.weights, scratch.casting[c],
+                    advance(sides_at, before, kQuadCorners));
+      } else {
+        CapCount before;
+        for (std::size_t k = 0; k < c - edge_chunks; ++k) {
+          before.light += scratch.caps[k].light;
+          before.dark += scratch.caps[k].dark;
+        }
+        write_caps(topo, job.light, generator, scratch.weights,
+                   chunk_range(c - edge_chunks, faces),
+                   advance(light_at, before.light, kTriangleCorners),
+                   advance(dark_at, before.dark, kTriangleCorners));
+      }
+    });
   });
 }
 

@@ -3,8 +3,8 @@
 // Owns: the threads of volume generation and the per-object scratch memory that lets a frame
 // reuse the last frame's allocations. Output is deterministic: each job's buffer is exactly what
 // core's build_volume produces for it, whatever the thread count, because one mesh is split
-// into fixed-size chunks (not into as many pieces as there are threads) whose outputs are
-// joined in chunk order.
+// into chunks whose size depends on the mesh alone, each chunk counts what it will emit, and
+// then writes it in place at the offset the counts before it give (no join, no copy).
 #pragma once
 
 #include <cstddef>
@@ -44,7 +44,9 @@ class VolumeBuilder {
  private:
   struct Scratch {
     std::vector<std::int8_t> weights;
-    std::vector<VolumeBuffer> chunks;
+    std::vector<std::vector<std::uint32_t>> casting;  // per edge chunk: its casting edges
+    std::vector<std::size_t> quads;                   // per edge chunk: quads they cast
+    std::vector<CapCount> caps;                       // per face chunk
   };
   std::vector<Scratch> scratch_;  // one per job slot, kept between frames
 };

@@ -119,8 +119,9 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
                std::mt19937& rng, LawStats& stats) {
   const Topology topo = build_topology(named.mesh);
   VolumeBuffer volume;
-  std::vector<std::int8_t> weights;
-  build_volume(topo, light, {generator, true}, weights, volume);
+  VolumeScratch scratch;
+  build_volume(topo, light, {generator, true}, scratch, volume);
+  const std::vector<std::int8_t>& weights = scratch.weights;
   const Generator used = resolve_generator(generator, topo.report);
   const bool front_only = used == Generator::standard;
   const HPoint l = testing::exact(light);

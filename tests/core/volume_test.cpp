@@ -14,8 +14,8 @@ namespace {
 VolumeBuffer build(const Mesh& mesh, glm::vec4 light, Generator g, bool caps = true) {
   const Topology topo = build_topology(mesh);
   VolumeBuffer out;
-  std::vector<std::int8_t> facing;
-  build_volume(topo, light, {g, caps}, facing, out);
+  VolumeScratch scratch;
+  build_volume(topo, light, {g, caps}, scratch, out);
   return out;
 }
 
@@ -121,11 +121,11 @@ TEST(Volume, CubeUnderALightAboveEachGenerator) {
 TEST(Volume, BufferIsReusedWithoutReallocating) {
   const Topology topo = build_topology(testing::box({-1, -1, -1}, {1, 1, 1}));
   VolumeBuffer out;
-  std::vector<std::int8_t> facing;
-  build_volume(topo, {3, 2, 5, 1}, {}, facing, out);
+  VolumeScratch scratch;
+  build_volume(topo, {3, 2, 5, 1}, {}, scratch, out);
   const VolumeBuffer first = out;
   const glm::vec4* storage = out.sides.vertices.data();
-  build_volume(topo, {3, 2, 5, 1}, {}, facing, out);
+  build_volume(topo, {3, 2, 5, 1}, {}, scratch, out);
   EXPECT_EQ(out.sides.vertices.data(), storage);
   EXPECT_EQ(out.sides.vertices, first.sides.vertices);
   EXPECT_EQ(out.dark_caps.weights, first.dark_caps.weights);

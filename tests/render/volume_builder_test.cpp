@@ -32,9 +32,9 @@ TEST(VolumeBuilder, MatchesSerialBuildForAnyThreadCount) {
   for (const glm::vec4& light : lights)
     for (Generator g : {Generator::automatic, Generator::robust, Generator::multiplicity}) {
       std::vector<VolumeBuffer> serial(topologies.size());
-      std::vector<std::int8_t> facing;
+      VolumeScratch scratch;
       for (std::size_t i = 0; i < topologies.size(); ++i)
-        build_volume(topologies[i], light, {g, true}, facing, serial[i]);
+        build_volume(topologies[i], light, {g, true}, scratch, serial[i]);
       ASSERT_GT(serial[0].sides.size(), 100u);
       for (int threads : {1, 2, 4}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
