@@ -1,4 +1,5 @@
 // The shadowvol command line. Thin by design: parses arguments, calls the library, prints.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -88,14 +89,17 @@ int main(int argc, char** argv) {
       ->required();
   inspect_cmd->add_flag("--json", json, "Print one JSON object instead of a table");
   inspect_cmd->add_option("--weld", weld,
-                          "Weld vertices closer than this distance (default 0: exact positions)")
-      ->check(CLI::NonNegativeNumber);
+                          "Weld vertices closer than this distance (default 0: exact positions)");
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  if (inspect_cmd->parsed()) return inspect(file, json, weld);
+  if (inspect_cmd->parsed()) {
+    if (!std::isfinite(weld) || weld < 0.0f)
+      return fail("--weld: " + std::to_string(weld) + " is not a distance (a finite number >= 0)");
+    return inspect(file, json, weld);
+  }
   return 0;
 }

@@ -38,6 +38,10 @@ TEST(ValidateMesh, NamesEachProblem) {
   nan.positions[1].y = std::nanf("");
   EXPECT_EQ(error_of(nan), "thing.obj: vertex 1 has a coordinate that is NaN or infinite");
 
+  Mesh far = triangle();
+  far.positions[0].x = 3e18f;
+  EXPECT_NE(error_of(far).find("vertex 0 lies more than 1e18 from the origin"), std::string::npos);
+
   Mesh inf = triangle();
   inf.positions[2].z = std::numeric_limits<float>::infinity();
   EXPECT_NE(error_of(inf).find("vertex 2"), std::string::npos);
