@@ -4,6 +4,8 @@
 #include <iostream>
 #include <string>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -61,11 +63,34 @@ void print_report(const std::string& file, const TopologyReport& r) {
                                                  : " (signed edge multiplicities)"));
 }
 
+// One status line on stderr, redrawn in place, only when stderr is a terminal: a person waiting
+// on a large file sees it move; pipes and logs get nothing.
+class StatusLine {
+ public:
+  StatusLine() : enabled_(isatty(STDERR_FILENO) == 1) {}
+  ~StatusLine() { clear(); }
+  void show(const std::string& text) {
+    if (enabled_) std::cerr << "\r\033[K" << text << std::flush;
+  }
+  void clear() { show(""); }
+
+ private:
+  bool enabled_;
+};
+
 int inspect(const std::string& file, bool json, float weld_epsilon) {
-  auto loaded = load_mesh(file);
+  StatusLine status;
+  status.show("reading " + file);
+  auto loaded = load_mesh(file, [&](float fraction) {
+    status.show("reading " + file + " " + std::to_string(static_cast<int>(fraction * 100)) + "%");
+  });
+  status.clear();
   if (!loaded) return fail(loaded.error().message);
   for (const std::string& w : loaded->warnings) std::cerr << "shadowvol: warning: " << w << "\n";
+  status.show("building the topology of " + std::to_string(loaded->mesh.triangle_count()) +
+              " triangles");
   const Topology topo = build_topology(loaded->mesh, WeldOptions{weld_epsilon});
+  status.clear();
   if (json)
     std::cout << report_json(file, topo.report).dump(2) << "\n";
   else

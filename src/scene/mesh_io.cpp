@@ -1,14 +1,29 @@
 #include "scene/mesh_io.h"
 
+#include <algorithm>
 #include <exception>
 #include <fstream>
 
 #include <assimp/Importer.hpp>
+#include <assimp/ProgressHandler.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 namespace shadowvol {
 namespace {
+
+// Forwards assimp's progress to the caller. The importer owns it and deletes it.
+class ProgressForwarder : public Assimp::ProgressHandler {
+ public:
+  explicit ProgressForwarder(LoadProgress progress) : progress_(std::move(progress)) {}
+  bool Update(float fraction) override {
+    if (fraction >= 0.0f) progress_(std::min(fraction, 1.0f));
+    return true;  // never abort
+  }
+
+ private:
+  LoadProgress progress_;
+};
 
 struct Gather {
   const aiScene* scene;
@@ -46,7 +61,7 @@ struct Gather {
 
 }  // namespace
 
-Expected<LoadedMesh> load_mesh(const std::filesystem::path& path) {
+Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProgress& progress) {
   const std::string name = path.string();
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
@@ -66,6 +81,7 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path) {
                                   aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
                                   aiComponent_TEXTURES | aiComponent_LIGHTS |
                                   aiComponent_CAMERAS);
+  if (progress) importer.SetProgressHandler(new ProgressForwarder(progress));
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(name, aiProcess_Triangulate | aiProcess_SortByPType |

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct LoadedMesh {
 // Errors (each names the file): missing or unreadable file, a file assimp cannot parse, a file
 // with no triangles, and anything validate_mesh refuses (NaN/Inf coordinates, out-of-range
 // indices, sizes past the limits).
-Expected<LoadedMesh> load_mesh(const std::filesystem::path& path);
+//
+// `progress`, if set, is called now and then with a fraction in [0, 1] while the file is read
+// (as often as assimp reports, which for some formats is only at the start and the end).
+using LoadProgress = std::function<void(float fraction)>;
+Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProgress& progress = {});
 
 }  // namespace shadowvol

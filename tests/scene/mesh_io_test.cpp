@@ -48,6 +48,16 @@ TEST(LoadMesh, GltfNodeTransformsAreAppliedPerInstance) {
   EXPECT_TRUE(has({0, 2, 10}));
 }
 
+TEST(LoadMesh, ReportsProgressEndingAtOne) {
+  std::vector<float> seen;
+  auto loaded = load_mesh(kData / "cube_quads.obj", [&](float f) { seen.push_back(f); });
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_GE(seen.front(), 0.0f);
+  EXPECT_EQ(seen.back(), 1.0f);
+}
+
 TEST(LoadMesh, PointsAndLinesAreLeftOutWithAWarning) {
   auto loaded = load_mesh(kData / "points_and_lines.obj");
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;
