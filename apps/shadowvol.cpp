@@ -58,9 +58,9 @@ void print_report(const std::string& file, const TopologyReport& r) {
   row("components", std::to_string(r.components));
   row("closed 2-manifold", r.closed_manifold ? "yes" : "no");
   const Generator g = resolve_generator(Generator::automatic, r);
-  row("generator (auto)", std::string(to_string(g)) +
-                              (r.closed_manifold ? " (silhouette edges, weight 1)"
-                                                 : " (signed edge multiplicities)"));
+  row("generator (auto)",
+      std::string(to_string(g)) +
+          (r.closed_manifold ? " (silhouette edges, weight 1)" : " (signed edge multiplicities)"));
 }
 
 // One status line on stderr, redrawn in place, only when stderr is a terminal: a person waiting

@@ -84,8 +84,8 @@ void BM_VolumeGeneration(benchmark::State& state) {
   state.counters["sides"] = static_cast<double>(volume.sides.size());
   // bw_fraction needs the loop's time, which Google Benchmark divides by only at report time:
   // computed in the reporter-independent way, from the rate counter's definition.
-  state.counters["bw_fraction"] = benchmark::Counter(
-      frames * static_cast<double>(bytes) / stream, benchmark::Counter::kIsRate);
+  state.counters["bw_fraction"] =
+      benchmark::Counter(frames * static_cast<double>(bytes) / stream, benchmark::Counter::kIsRate);
 }
 
 BENCHMARK(BM_VolumeGeneration)

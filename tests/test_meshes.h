@@ -100,13 +100,15 @@ inline std::vector<NamedMesh> adversarial_meshes(std::uint32_t seed) {
   const Mesh cube = box({-16, -16, -16}, {16, 16, 16});
   out.push_back({"cube", cube});
   out.push_back({"tetrahedron", tetrahedron({-10, -12, -8}, 30)});
-  out.push_back({"two_cubes", merged(box({-40, -8, -8}, {-20, 12, 12}), box({8, -4, 0}, {30, 20, 24}))});
+  out.push_back(
+      {"two_cubes", merged(box({-40, -8, -8}, {-20, 12, 12}), box({8, -4, 0}, {30, 20, 24}))});
   out.push_back({"bumpy_box", bumpy_box(5, 8, rng)});
   // Two closed tetrahedra meeting at one vertex: vertex-non-manifold, every edge still manifold.
   {
     Mesh bowtie = tetrahedron({0, 0, 0}, 20);
     Mesh other = tetrahedron({0, 0, 0}, -20);  // mirrored: reverse its winding to face outwards
-    for (std::size_t i = 0; i < other.indices.size(); i += 3) std::swap(other.indices[i + 1], other.indices[i + 2]);
+    for (std::size_t i = 0; i < other.indices.size(); i += 3)
+      std::swap(other.indices[i + 1], other.indices[i + 2]);
     out.push_back({"bowtie_nonmanifold", merged(bowtie, other)});
   }
   out.push_back({"open_box", box({-16, -16, -16}, {16, 16, 16}, false)});
@@ -119,7 +121,8 @@ inline std::vector<NamedMesh> adversarial_meshes(std::uint32_t seed) {
   }
   {
     Mesh book;  // four pages on one spine
-    for (glm::vec3 tip : {glm::vec3(20, 0, 0), glm::vec3(0, 20, 0), glm::vec3(-20, 3, 0), glm::vec3(5, -20, 0)})
+    for (glm::vec3 tip :
+         {glm::vec3(20, 0, 0), glm::vec3(0, 20, 0), glm::vec3(-20, 3, 0), glm::vec3(5, -20, 0)})
       add_triangle(book, {0, 0, -15}, {0, 0, 15}, tip);
     out.push_back({"book_nonmanifold", book});
   }
@@ -138,7 +141,7 @@ inline std::vector<NamedMesh> adversarial_meshes(std::uint32_t seed) {
   {
     Mesh sliver = cube;
     const auto base = static_cast<std::uint32_t>(sliver.positions.size());
-    sliver.positions.emplace_back(0, -16, -16);  // midpoint of the edge v0-v1
+    sliver.positions.emplace_back(0, -16, -16);                 // midpoint of the edge v0-v1
     sliver.indices.insert(sliver.indices.end(), {0, base, 1});  // collinear: zero area
     sliver.indices.insert(sliver.indices.end(), {2, 2, 3});     // collapsed
     out.push_back({"zero_area_sliver", sliver});

@@ -11,8 +11,7 @@ Expected<void> validate_mesh(const Mesh& mesh, std::string_view source) {
   if (mesh.indices.size() % 3 != 0)
     return make_error(where + ": index count " + std::to_string(mesh.indices.size()) +
                       " is not a multiple of 3 (a triangle list is expected)");
-  if (mesh.triangle_count() == 0)
-    return make_error(where + ": the mesh has no triangles");
+  if (mesh.triangle_count() == 0) return make_error(where + ": the mesh has no triangles");
   if (mesh.triangle_count() > kMaxTriangles)
     return make_error(where + ": " + std::to_string(mesh.triangle_count()) +
                       " triangles is more than the supported " + std::to_string(kMaxTriangles));

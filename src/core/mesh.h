@@ -35,8 +35,9 @@ inline constexpr float kMaxCoordinate = 1e18f;
 // Checks that a mesh can be used by every later stage. Returns an error naming `source` (a file
 // name or object name, for the message) and the first problem found: no triangles, an index
 // count that is not a multiple of 3, an index outside the position array, a NaN or infinite
-// coordinate, a coordinate beyond +-kMaxCoordinate, or a size above kMaxTriangles / kMaxVertices. Degenerate triangles are not errors:
-// the topology counts them and the volume generators handle them.
+// coordinate, a coordinate beyond +-kMaxCoordinate, or a size above kMaxTriangles / kMaxVertices.
+// Degenerate triangles are not errors: the topology counts them and the volume generators handle
+// them.
 Expected<void> validate_mesh(const Mesh& mesh, std::string_view source);
 
 }  // namespace shadowvol

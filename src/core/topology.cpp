@@ -193,8 +193,8 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
     if (uses == 2 && (forward != 1 || backward != 1)) ++r.inconsistent_edges;
     if (uses == 1 || (uses == 2 && forward == 1 && backward == 1)) {
       // Regular: store it in the direction its first face runs it.
-      topo.edge_faces.push_back({face_of(first), uses == 2 ? face_of(half_edges[i + 1].face_ref)
-                                                           : no_face});
+      topo.edge_faces.push_back(
+          {face_of(first), uses == 2 ? face_of(half_edges[i + 1].face_ref) : no_face});
       topo.edge_vertices.push_back(is_reversed(first) ? IndexPair{low_high[1], low_high[0]}
                                                       : low_high);
     } else {
@@ -205,8 +205,8 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
     i = j;
   }
   r.edges = topo.edge_count();
-  r.closed_manifold = r.edges > 0 && r.boundary_edges == 0 && r.nonmanifold_edges == 0 &&
-                      r.inconsistent_edges == 0;
+  r.closed_manifold =
+      r.edges > 0 && r.boundary_edges == 0 && r.nonmanifold_edges == 0 && r.inconsistent_edges == 0;
 
   std::vector<bool> used(topo.positions.size(), false);
   for (std::uint32_t v : topo.face_vertices) used[v] = true;

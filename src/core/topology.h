@@ -29,7 +29,7 @@ struct WeldOptions {
 // What `shadowvol inspect` prints. Counts are over the welded mesh.
 struct TopologyReport {
   std::size_t input_vertices = 0;
-  std::size_t vertices = 0;              // after welding
+  std::size_t vertices = 0;  // after welding
   std::size_t triangles = 0;
   std::size_t edges = 0;                 // undirected edges of non-collapsed triangles
   std::size_t boundary_edges = 0;        // used by exactly one triangle
@@ -75,8 +75,8 @@ struct FacePlanes {
 
 struct Topology {
   // --- query form: what the per-frame pass reads ---
-  std::vector<glm::vec3> positions;           // welded, in the mesh's space
-  std::vector<std::uint32_t> face_vertices;   // 3 per input triangle, same order as the input
+  std::vector<glm::vec3> positions;          // welded, in the mesh's space
+  std::vector<std::uint32_t> face_vertices;  // 3 per input triangle, same order as the input
   FacePlanes face_planes;
 
   // Regular edges: one face, or two faces running the edge in opposite directions (every edge of

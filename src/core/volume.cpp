@@ -57,8 +57,8 @@ struct CapWeights {
   int light;
   int dark;
 };
-inline CapWeights cap_weights(const Topology& topo, bool standard, bool point_light,
-                              std::int8_t w, std::size_t f) {
+inline CapWeights cap_weights(const Topology& topo, bool standard, bool point_light, std::int8_t w,
+                              std::size_t f) {
   if (!standard) return {w, point_light ? -w : 0};
   const bool back = w == 0 && topo.face_planes[f] != glm::vec4(0.0f);
   return {w, point_light && back ? 1 : 0};
@@ -75,17 +75,21 @@ PrimitiveSpan PrimitiveList::grow(std::size_t primitives, int corners) {
 
 std::string_view to_string(Generator generator) {
   switch (generator) {
-    case Generator::standard: return "standard";
-    case Generator::robust: return "robust";
-    case Generator::multiplicity: return "multiplicity";
-    case Generator::automatic: return "auto";
+    case Generator::standard:
+      return "standard";
+    case Generator::robust:
+      return "robust";
+    case Generator::multiplicity:
+      return "multiplicity";
+    case Generator::automatic:
+      return "auto";
   }
   return "unknown";
 }
 
 Expected<Generator> parse_generator(std::string_view name) {
-  for (Generator g : {Generator::standard, Generator::robust, Generator::multiplicity,
-                      Generator::automatic})
+  for (Generator g :
+       {Generator::standard, Generator::robust, Generator::multiplicity, Generator::automatic})
     if (name == to_string(g)) return g;
   return make_error("unknown generator '" + std::string(name) +
                     "': expected standard, robust, multiplicity or auto");
@@ -301,8 +305,8 @@ void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOpti
   scratch.weights.assign(weight_buffer_size(topo), 0);
   compute_face_weights(topo, light, generator, {0, topo.face_count()}, scratch.weights);
   scratch.casting.clear();
-  const std::size_t quads = find_casting_edges(topo, generator, scratch.weights,
-                                               {0, topo.edge_count()}, scratch.casting);
+  const std::size_t quads =
+      find_casting_edges(topo, generator, scratch.weights, {0, topo.edge_count()}, scratch.casting);
   write_sides(topo, light, generator, scratch.weights, scratch.casting,
               out.sides.grow(quads, kQuadCorners));
   if (!options.caps) return;

@@ -106,7 +106,10 @@ struct PrimitiveList {
   VolumeVector<std::int32_t> weights;
 
   std::size_t size() const { return weights.size(); }
-  void clear() { vertices.clear(); weights.clear(); }
+  void clear() {
+    vertices.clear();
+    weights.clear();
+  }
   // Makes room for `primitives` more of `corners` vertices each, uninitialised, and says where.
   PrimitiveSpan grow(std::size_t primitives, int corners);
 };
@@ -125,7 +128,11 @@ struct VolumeBuffer {
   // Empty for directional lights: every vertex projects to the same point at infinity.
   PrimitiveList dark_caps;
 
-  void clear() { sides.clear(); light_caps.clear(); dark_caps.clear(); }
+  void clear() {
+    sides.clear();
+    light_caps.clear();
+    dark_caps.clear();
+  }
   std::size_t primitive_count() const {
     return sides.size() + light_caps.size() + dark_caps.size();
   }
@@ -190,7 +197,7 @@ struct VolumeOptions {
 
 // Per-frame scratch memory of build_volume, owned by the caller and reused between frames.
 struct VolumeScratch {
-  std::vector<std::int8_t> weights;   // the face weights of the last build
+  std::vector<std::int8_t> weights;  // the face weights of the last build
   std::vector<std::uint32_t> casting;
 };
 

@@ -83,8 +83,7 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
           before.light += scratch.caps[k].light;
           before.dark += scratch.caps[k].dark;
         }
-        write_caps(topo, job.light, generator, scratch.weights,
-                   chunk_range(c - edge_chunks, faces),
+        write_caps(topo, job.light, generator, scratch.weights, chunk_range(c - edge_chunks, faces),
                    advance(light_at, before.light, kTriangleCorners),
                    advance(dark_at, before.dark, kTriangleCorners));
       }

@@ -4,10 +4,10 @@
 #include <exception>
 #include <fstream>
 
-#include <assimp/Importer.hpp>
-#include <assimp/ProgressHandler.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+#include <assimp/ProgressHandler.hpp>
 
 namespace shadowvol {
 namespace {
@@ -45,8 +45,14 @@ struct Gather {
     }
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
-      if (face.mNumIndices == 1) { ++out->points_ignored; continue; }
-      if (face.mNumIndices == 2) { ++out->lines_ignored; continue; }
+      if (face.mNumIndices == 1) {
+        ++out->points_ignored;
+        continue;
+      }
+      if (face.mNumIndices == 2) {
+        ++out->lines_ignored;
+        continue;
+      }
       if (face.mNumIndices != 3) continue;  // cannot happen after aiProcess_Triangulate
       for (int k = 0; k < 3; ++k) {
         if (face.mIndices[k] >= m->mNumVertices && error.empty())
@@ -64,8 +70,7 @@ struct Gather {
 Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProgress& progress) {
   const std::string name = path.string();
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    return make_error(name + ": no such file");
+  if (!std::filesystem::exists(path, ec)) return make_error(name + ": no such file");
   if (std::filesystem::is_directory(path, ec))
     return make_error(name + ": is a directory, not a mesh file");
   if (!std::ifstream(path, std::ios::binary).good())
@@ -79,14 +84,13 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
                               aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
                                   aiComponent_COLORS | aiComponent_TEXCOORDS |
                                   aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                  aiComponent_TEXTURES | aiComponent_LIGHTS |
-                                  aiComponent_CAMERAS);
+                                  aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS);
   if (progress) importer.SetProgressHandler(new ProgressForwarder(progress));
   const aiScene* scene = nullptr;
   try {
-    scene = importer.ReadFile(name, aiProcess_Triangulate | aiProcess_SortByPType |
-                                        aiProcess_RemoveComponent |
-                                        aiProcess_ValidateDataStructure);
+    scene =
+        importer.ReadFile(name, aiProcess_Triangulate | aiProcess_SortByPType |
+                                    aiProcess_RemoveComponent | aiProcess_ValidateDataStructure);
   } catch (const std::exception& e) {  // assimp catches most of its own; not all
     return make_error(name + ": cannot be read as a mesh (" + e.what() + ")");
   }

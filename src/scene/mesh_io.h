@@ -17,8 +17,8 @@ namespace shadowvol {
 
 struct LoadedMesh {
   Mesh mesh;
-  std::size_t points_ignored = 0;  // point primitives in the file (not casters)
-  std::size_t lines_ignored = 0;   // line primitives in the file (not casters)
+  std::size_t points_ignored = 0;     // point primitives in the file (not casters)
+  std::size_t lines_ignored = 0;      // line primitives in the file (not casters)
   std::vector<std::string> warnings;  // for the caller to show; loading went on regardless
 };
 
@@ -32,6 +32,7 @@ struct LoadedMesh {
 // `progress`, if set, is called now and then with a fraction in [0, 1] while the file is read
 // (as often as assimp reports, which for some formats is only at the start and the end).
 using LoadProgress = std::function<void(float fraction)>;
-Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProgress& progress = {});
+Expected<LoadedMesh> load_mesh(const std::filesystem::path& path,
+                               const LoadProgress& progress = {});
 
 }  // namespace shadowvol

@@ -6,8 +6,7 @@
 
 namespace shadowvol {
 
-Mesh make_bumpy_torus(int rings, int segments, float major_radius, float minor_radius,
-                      int bumps) {
+Mesh make_bumpy_torus(int rings, int segments, float major_radius, float minor_radius, int bumps) {
   Mesh m;
   m.positions.reserve(static_cast<std::size_t>(rings) * segments);
   const float two_pi = 2.0f * std::numbers::pi_v<float>;

@@ -20,7 +20,8 @@ std::vector<std::pair<std::uint32_t, bool>> faces_of(const Topology& t, std::uin
     if (std::minmax(v[0], v[1]) != std::minmax(a, b)) continue;
     const bool first_runs_a_to_b = v[0] == a;
     out.emplace_back(t.edge_faces[e][0], !first_runs_a_to_b);
-    if (t.edge_faces[e][1] != t.face_count()) out.emplace_back(t.edge_faces[e][1], first_runs_a_to_b);
+    if (t.edge_faces[e][1] != t.face_count())
+      out.emplace_back(t.edge_faces[e][1], first_runs_a_to_b);
   }
   for (std::size_t e = 0; e < t.irregular_edge_count(); ++e) {
     const IndexPair v = t.irregular_vertices[e];
@@ -52,7 +53,8 @@ TEST(Topology, CubeIsAClosedManifold) {
     // The first face runs the edge in its stored direction.
     const std::uint32_t* v = &t.face_vertices[3 * t.edge_faces[e][0]];
     bool found = false;
-    for (int k = 0; k < 3; ++k) found |= v[k] == t.edge_vertices[e][0] && v[(k + 1) % 3] == t.edge_vertices[e][1];
+    for (int k = 0; k < 3; ++k)
+      found |= v[k] == t.edge_vertices[e][0] && v[(k + 1) % 3] == t.edge_vertices[e][1];
     EXPECT_TRUE(found) << "edge " << e;
   }
   // Face 0 is (0, 2, 3) on the z = 0 side: normal (0, 0, -1), scaled by 2^-1 into [0.5, 1).
@@ -103,7 +105,8 @@ TEST(Topology, TwoFacesRunningOneEdgeTheSameWayAreInconsistent) {
   const Topology t = build_topology(m);
   EXPECT_EQ(t.report.inconsistent_edges, 1u);
   EXPECT_EQ(t.irregular_edge_count(), 1u);
-  EXPECT_EQ(faces_of(t, 0, 1), (std::vector<std::pair<std::uint32_t, bool>>{{0u, false}, {1u, false}}));
+  EXPECT_EQ(faces_of(t, 0, 1),
+            (std::vector<std::pair<std::uint32_t, bool>>{{0u, false}, {1u, false}}));
   EXPECT_EQ(t.report.nonmanifold_edges, 0u);
   EXPECT_FALSE(t.report.closed_manifold);
 }

@@ -96,7 +96,8 @@ Counts zfail_count(const VolumeBuffer& volume, const HPoint& p, const HPoint& en
   add_crossings(volume.light_caps, kTriangleCorners, p, end, n);
   const PrimitiveList& dark = volume.dark_caps;
   for (std::size_t i = 0; i < dark.size(); ++i) {
-    const HPoint x0 = testing::exact(dark.vertices[3 * i]), x1 = testing::exact(dark.vertices[3 * i + 1]),
+    const HPoint x0 = testing::exact(dark.vertices[3 * i]),
+                 x1 = testing::exact(dark.vertices[3 * i + 1]),
                  x2 = testing::exact(dark.vertices[3 * i + 2]);
     const Crossing c = testing::direction_inside(end, x0, x1, x2);
     if (c == Crossing::ambiguous) n.ambiguous = true;
@@ -150,7 +151,8 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
   std::vector<std::size_t> lit_faces;
   for (std::size_t f = 0; f < topo.face_count(); ++f)
     if (weights[f] != 0) lit_faces.push_back(f);
-  std::uniform_int_distribution<std::size_t> pick_face(0, std::max<std::size_t>(lit_faces.size(), 1) - 1);
+  std::uniform_int_distribution<std::size_t> pick_face(
+      0, std::max<std::size_t>(lit_faces.size(), 1) - 1);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   auto behind_caster = [&]() -> HPoint {
     const std::size_t f = lit_faces[pick_face(rng)];
@@ -169,7 +171,8 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
     int tries = 0;
     do {
       if (tries++ > 0) ++stats.resampled;
-      p = sample % 2 && !lit_faces.empty() ? behind_caster() : HPoint{near(rng), near(rng), near(rng), kGrid};
+      p = sample % 2 && !lit_faces.empty() ? behind_caster()
+                                           : HPoint{near(rng), near(rng), near(rng), kGrid};
       expected = caster_count(topo, p, l, front_only);
       zpass = zpass_count(volume, o, p);
       // The ray away from O, or for point lights every other time the ray away from the light,
@@ -184,8 +187,8 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
     if (zpass.value != expected.value || zfail.value != expected.value) {
       std::ostringstream msg;
       msg << named.name << " generator=" << to_string(generator) << " light=(" << light.x << ","
-          << light.y << "," << light.z << "," << light.w << ") P=(" << p[0] << "," << p[1]
-          << "," << p[2] << ")/" << p[3] << ": surfaces=" << expected.value << " zpass=" << zpass.value
+          << light.y << "," << light.z << "," << light.w << ") P=(" << p[0] << "," << p[1] << ","
+          << p[2] << ")/" << p[3] << ": surfaces=" << expected.value << " zpass=" << zpass.value
           << " zfail=" << zfail.value;
       stats.failures.push_back(msg.str());
     }
@@ -220,15 +223,16 @@ TEST_P(VolumeLaw, CountEqualsCasterSurfacesBetweenPointAndLight) {
     const Topology topo = build_topology(named.mesh);
     if (generator == Generator::standard && !topo.report.closed_manifold) continue;
     ++meshes;
-    for (int i = 0; i < 6; ++i) check_law(named, random_light(rng, i % 3 == 2), generator, rng, stats);
+    for (int i = 0; i < 6; ++i)
+      check_law(named, random_light(rng, i % 3 == 2), generator, rng, stats);
     // Lights on the planes of the axis-aligned faces: facing 0 on those faces.
     check_law(named, glm::vec4(16, 40, 16, 1), generator, rng, stats);
     check_law(named, glm::vec4(0, 0, 1, 0), generator, rng, stats);
   }
   for (std::size_t i = 0; i < std::min<std::size_t>(stats.failures.size(), 10); ++i)
     ADD_FAILURE() << stats.failures[i];
-  EXPECT_TRUE(stats.failures.empty()) << stats.failures.size() << " of " << stats.checked
-                                      << " samples broke the law";
+  EXPECT_TRUE(stats.failures.empty())
+      << stats.failures.size() << " of " << stats.checked << " samples broke the law";
   // The test must have tested: most lights usable, most samples unambiguous at first draw.
   EXPECT_GE(meshes, generator == Generator::standard ? 4 : 14);
   EXPECT_GE(stats.checked, meshes * 8 * 60 * 3 / 4);

@@ -99,8 +99,8 @@ TEST(Volume, CubeUnderALightAboveEachGenerator) {
   };
   const VolumeBuffer standard = build(cube, light, Generator::standard);
   EXPECT_EQ(magnitudes(standard.sides), (std::vector<int>{1, 1, 1, 1}));
-  EXPECT_EQ(standard.light_caps.size(), 2u);   // front faces
-  EXPECT_EQ(standard.dark_caps.size(), 10u);   // back faces at infinity
+  EXPECT_EQ(standard.light_caps.size(), 2u);  // front faces
+  EXPECT_EQ(standard.dark_caps.size(), 10u);  // back faces at infinity
   const VolumeBuffer multiplicity = build(cube, light, Generator::multiplicity);
   EXPECT_EQ(magnitudes(multiplicity.sides), (std::vector<int>{2, 2, 2, 2}));
   EXPECT_EQ(multiplicity.light_caps.size(), 12u);

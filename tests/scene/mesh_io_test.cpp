@@ -39,7 +39,9 @@ TEST(LoadMesh, GltfNodeTransformsAreAppliedPerInstance) {
   ASSERT_EQ(loaded->mesh.triangle_count(), 2u);
   std::vector<glm::vec3> corners;
   for (std::uint32_t i : loaded->mesh.indices) corners.push_back(loaded->mesh.positions[i]);
-  auto has = [&](glm::vec3 p) { return std::find(corners.begin(), corners.end(), p) != corners.end(); };
+  auto has = [&](glm::vec3 p) {
+    return std::find(corners.begin(), corners.end(), p) != corners.end();
+  };
   EXPECT_TRUE(has({20, 0, 0}));
   EXPECT_TRUE(has({22, 0, 0}));
   EXPECT_TRUE(has({20, 2, 0}));
@@ -95,8 +97,7 @@ TEST_P(LoadMeshRefuses, WithAMessageNamingTheFileAndTheProblem) {
 
 INSTANTIATE_TEST_SUITE_P(
     BadFiles, LoadMeshRefuses,
-    ::testing::Values(BadFile{"missing.obj", "no such file"},
-                      BadFile{"", "is a directory"},
+    ::testing::Values(BadFile{"missing.obj", "no such file"}, BadFile{"", "is a directory"},
                       BadFile{"empty.obj", "the file is empty"},
                       BadFile{"garbage.bin", "cannot be read as a mesh"},
                       BadFile{"lines_only.obj", "no triangles"},
@@ -106,7 +107,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFile{"absurd_count.stl", "cannot be read as a mesh"}),
     [](const auto& info) {
       std::string name = info.param.file[0] ? info.param.file : "directory";
-      std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+      std::replace_if(
+          name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
       return name;
     });
 
