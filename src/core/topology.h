@@ -2,8 +2,9 @@
 //
 // Owns: welding vertices by position, the edge table (every undirected edge with every face
 // that uses it and the direction in which it does), and the manifold report. The per-frame
-// silhouette and volume code (core/volume.h) reads only the flat arrays here: CSR adjacency,
-// no per-edge allocation (STYLE §2: the build form and the query form are different types).
+// silhouette and volume code (core/volume.h) reads only the flat arrays here: face planes, the
+// face pair of every regular edge, a CSR list for the rare irregular ones, no per-edge
+// allocation (STYLE §2: the build form and the query form are different types).
 // Pure: no I/O, no threads, no globals.
 #pragma once
 

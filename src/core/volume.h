@@ -6,7 +6,7 @@
 //   - multiplicity (Kim, Kim & Turk 2008, §1.1-1.2): the general one, exact on any triangle
 //     soup. The side quad of edge e has weight m(e) = sum over the faces f using e of
 //     facing(f) * orient(f, e), where facing is +1 / -1 / 0 (light in front / behind / in the
-//     plane or zero area) and orient is +1 when f runs along e's canonical direction, -1 when
+//     plane or zero area) and orient is +1 when f runs along e's stored direction, -1 when
 //     against. Caps per face: light cap weight facing(f), dark cap weight -facing(f).
 //   - robust (GPU Gems 3 ch. 11, §11.3.1): the per-face form of the same sum. Every face, front
 //     or back, closes its own volume; an edge is extruded once per face unless its two faces
