@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include <glm/geometric.hpp>
+
 #include "core/topology.h"
 #include "scene/mesh_io.h"
 
@@ -48,6 +50,19 @@ TEST(LoadMesh, GltfNodeTransformsAreAppliedPerInstance) {
   EXPECT_TRUE(has({0, 0, 10}));
   EXPECT_TRUE(has({2, 0, 10}));
   EXPECT_TRUE(has({0, 2, 10}));
+}
+
+TEST(LoadMesh, ColladaNestedTransformsAreApplied) {
+  // One triangle under a root scaled by 3: once translated by (1,0,0), once turned 90 degrees
+  // about z.
+  auto loaded = load_mesh(kData / "nested.dae");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_EQ(loaded->mesh.triangle_count(), 2u);
+  const glm::vec3 expected[6] = {{3, 0, 0}, {6, 0, 0}, {3, 3, 0}, {0, 0, 0}, {0, 3, 0}, {-3, 0, 0}};
+  for (int k = 0; k < 6; ++k) {
+    const glm::vec3 p = loaded->mesh.positions[loaded->mesh.indices[k]];
+    EXPECT_NEAR(glm::distance(p, expected[k]), 0.0f, 1e-5f) << "corner " << k;
+  }
 }
 
 TEST(LoadMesh, ReportsProgressEndingAtOne) {
