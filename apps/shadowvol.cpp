@@ -1,5 +1,9 @@
 // The shadowvol command line. Thin by design: parses arguments, calls the library, prints.
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <vector>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -78,7 +82,54 @@ class StatusLine {
   bool enabled_;
 };
 
-int inspect(const std::string& file, bool json, float weld_epsilon) {
+// "x,y,z,w" -> a homogeneous light, or an error naming what is wrong.
+Expected<glm::vec4> parse_light(const std::string& text) {
+  glm::vec4 light(0.0f);
+  const char* p = text.data();
+  const char* end = text.data() + text.size();
+  for (int i = 0; i < 4; ++i) {
+    if (i > 0 && (p == end || *p++ != ','))
+      return make_error("--light: '" + text + "' is not four numbers x,y,z,w");
+    const auto [next, ec] = std::from_chars(p, end, light[i]);
+    if (ec != std::errc()) return make_error("--light: '" + text + "' is not four numbers x,y,z,w");
+    p = next;
+  }
+  if (p != end) return make_error("--light: '" + text + "' has more than four numbers");
+  if (auto ok = check_light(light); !ok) return make_error("--light: " + ok.error().message);
+  return light;
+}
+
+// What each generator makes of the mesh under one light.
+struct VolumeStats {
+  Generator generator;
+  std::size_t side_quads = 0;
+  std::int64_t unit_quads = 0;  // sum of |weight|: the draws a +-1 stencil backend needs
+  int max_weight = 0;
+  std::size_t light_caps = 0, dark_caps = 0;
+};
+
+std::vector<VolumeStats> volume_stats(const Topology& topo, const glm::vec4& light) {
+  std::vector<VolumeStats> out;
+  VolumeScratch scratch;
+  VolumeBuffer volume;
+  for (Generator g : {Generator::standard, Generator::robust, Generator::multiplicity}) {
+    if (!check_generator(g, topo.report, "").ok()) continue;
+    build_volume(topo, light, {g, true}, scratch, volume);
+    VolumeStats s{g};
+    s.side_quads = volume.sides.size();
+    for (std::int32_t w : volume.sides.weights) {
+      s.unit_quads += std::abs(w);
+      s.max_weight = std::max(s.max_weight, std::abs(w));
+    }
+    s.light_caps = volume.light_caps.size();
+    s.dark_caps = volume.dark_caps.size();
+    out.push_back(s);
+  }
+  return out;
+}
+
+int inspect(const std::string& file, bool json, float weld_epsilon,
+            const std::optional<glm::vec4>& light) {
   StatusLine status;
   status.show("reading " + file);
   auto loaded = load_mesh(file, [&](float fraction) {
@@ -91,10 +142,33 @@ int inspect(const std::string& file, bool json, float weld_epsilon) {
               " triangles");
   const Topology topo = build_topology(loaded->mesh, WeldOptions{weld_epsilon});
   status.clear();
-  if (json)
-    std::cout << report_json(file, topo.report).dump(2) << "\n";
-  else
-    print_report(file, topo.report);
+  std::vector<VolumeStats> volumes;
+  if (light) volumes = volume_stats(topo, *light);
+  if (json) {
+    nlohmann::json out = report_json(file, topo.report);
+    if (light) {
+      out["light"] = {light->x, light->y, light->z, light->w};
+      for (const VolumeStats& v : volumes)
+        out["volumes"][std::string(to_string(v.generator))] = {
+            {"side_quads", v.side_quads}, {"unit_weight_quads", v.unit_quads},
+            {"max_weight", v.max_weight}, {"light_caps", v.light_caps},
+            {"dark_caps", v.dark_caps}};
+    }
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  print_report(file, topo.report);
+  if (light) {
+    std::printf("\nvolumes under the %s light (%g, %g, %g, %g)\n",
+                light->w == 0.0f ? "directional" : "point", light->x, light->y, light->z,
+                light->w);
+    std::printf("  %-13s %11s %17s %11s %11s %10s\n", "generator", "side quads",
+                "as +-1 quads", "max |w|", "light caps", "dark caps");
+    for (const VolumeStats& v : volumes)
+      std::printf("  %-13s %11zu %17lld %11d %11zu %10zu\n",
+                  std::string(to_string(v.generator)).c_str(), v.side_quads,
+                  static_cast<long long>(v.unit_quads), v.max_weight, v.light_caps, v.dark_caps);
+  }
   return 0;
 }
 
@@ -115,6 +189,11 @@ int main(int argc, char** argv) {
   inspect_cmd->add_flag("--json", json, "Print one JSON object instead of a table");
   inspect_cmd->add_option("--weld", weld,
                           "Weld vertices closer than this distance (default 0: exact positions)");
+  std::string light_text;
+  inspect_cmd->add_option("--light", light_text,
+                          "Also build the shadow volumes for this light, x,y,z,w in the mesh's "
+                          "space (w = 1 point light, w = 0 directional), and count what each "
+                          "generator makes");
 
   try {
     app.parse(argc, argv);
@@ -124,7 +203,13 @@ int main(int argc, char** argv) {
   if (inspect_cmd->parsed()) {
     if (!std::isfinite(weld) || weld < 0.0f)
       return fail("--weld: " + std::to_string(weld) + " is not a distance (a finite number >= 0)");
-    return inspect(file, json, weld);
+    std::optional<glm::vec4> light;
+    if (!light_text.empty()) {
+      auto parsed = parse_light(light_text);
+      if (!parsed) return fail(parsed.error().message);
+      light = *parsed;
+    }
+    return inspect(file, json, weld, light);
   }
   return 0;
 }

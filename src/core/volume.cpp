@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -65,6 +66,18 @@ inline CapWeights cap_weights(const Topology& topo, bool standard, bool point_li
 }
 
 }  // namespace
+
+Expected<void> check_light(const glm::vec4& light) {
+  for (int i = 0; i < 4; ++i)
+    if (!std::isfinite(light[i])) return make_error("the light has a coordinate that is not finite");
+  if (light.w != 0.0f && light.w != 1.0f)
+    return make_error("the light's w is " + std::to_string(light.w) +
+                      ": use 1 for a point light (x, y, z is its position) or 0 for a "
+                      "directional light (x, y, z is the direction it shines from)");
+  if (light.w == 0.0f && light.x == 0.0f && light.y == 0.0f && light.z == 0.0f)
+    return make_error("a directional light needs a direction: x, y and z are all 0");
+  return {};
+}
 
 PrimitiveSpan PrimitiveList::grow(std::size_t primitives, int corners) {
   const std::size_t vertex_start = vertices.size(), weight_start = weights.size();

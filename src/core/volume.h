@@ -68,6 +68,10 @@ Generator resolve_generator(Generator requested, const TopologyReport& report);
 Expected<void> check_generator(Generator requested, const TopologyReport& report,
                                std::string_view source);
 
+// Refuses what is not a light: a non-finite coordinate, w other than 1 (point) or 0
+// (directional), or a directional light without a direction.
+Expected<void> check_light(const glm::vec4& light);
+
 // Allocates like std::allocator but leaves new elements of trivial types uninitialised on
 // resize: a volume list is resized to its final size and then written in full, so zeroing it
 // first would write every byte twice.

@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "core/topology.h"
 #include "core/volume.h"
@@ -129,6 +131,15 @@ TEST(Volume, BufferIsReusedWithoutReallocating) {
   EXPECT_EQ(out.sides.vertices.data(), storage);
   EXPECT_EQ(out.sides.vertices, first.sides.vertices);
   EXPECT_EQ(out.dark_caps.weights, first.dark_caps.weights);
+}
+
+TEST(Lights, CheckRefusesWhatIsNotALight) {
+  EXPECT_TRUE(check_light({1, 2, 3, 1}).ok());
+  EXPECT_TRUE(check_light({0, 0, 1, 0}).ok());
+  EXPECT_FALSE(check_light({0, 0, 0, 0}).ok());
+  EXPECT_FALSE(check_light({1, 2, 3, 2}).ok());
+  EXPECT_FALSE(check_light({std::nanf(""), 0, 1, 1}).ok());
+  EXPECT_FALSE(check_light({std::numeric_limits<float>::infinity(), 0, 1, 0}).ok());
 }
 
 TEST(Generators, ParseResolveAndCheck) {
