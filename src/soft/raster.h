@@ -1,0 +1,95 @@
+// shadowvol soft: the software rasterizer's triangle stage (setup -> raster), its buffers and
+// counters. Depends on glm only; knows nothing of meshes, scenes or shadow volumes.
+//
+// Owns: clipping in homogeneous space, snapping to a fixed-point grid, exact edge functions
+// with a top-left fill rule, the per-pixel depth and signed-count buffers, the per-tile depth
+// bounds (hi-z), and counters of the work done. Single-threaded here; the tiles are the unit a
+// threaded binner will split on.
+//
+// Conventions:
+//   - Input vertices are in clip space (OpenGL: x, y, z in [-w, w] is inside), produced by an
+//     infinite-far projection (Everitt & Kilgard 2002): a point at infinity (w = 0 in eye space)
+//     lands exactly on depth 1, so the far plane never clips and the only clip plane that changes
+//     what is drawn is the near plane z >= -w. Guard-band planes |x|, |y| <= kGuardBand * w keep
+//     snapped coordinates inside the fixed-point range; they lie outside the viewport and change
+//     no pixel.
+//   - Window coordinates: x right, y down (row 0 is the top of the image); depth (z / w + 1) / 2
+//     in [0, 1], 1 at infinity. A pixel is covered when its centre is inside the triangle, by the
+//     top-left rule on its edges.
+//   - Facing: a triangle whose vertices run counter-clockwise as seen by the viewer (OpenGL's
+//     default front face) is front-facing.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+namespace shadowvol::soft {
+
+// 1/256 pixel: edge functions are products of two coordinate differences, each below
+// 2^(15 + 8 + 1) = 2^24 subpixels within the guard band, so they fit in 64-bit integers exactly.
+inline constexpr int kSubpixelBits = 8;
+inline constexpr int kSubpixels = 1 << kSubpixelBits;
+// The guard band, in units of half the viewport: snapped coordinates stay below 2^15 pixels for
+// viewports up to 4096 pixels wide.
+inline constexpr float kGuardBand = 8.0f;
+inline constexpr int kMaxViewport = 4096;
+// Tiles of 8 x 8 pixels, as in Laine 2005 §7 (per-tile culling, per-tile depth bounds).
+inline constexpr int kTileSize = 8;
+
+// Depth bounds of the pixels of one tile, the hi-z. Two floats, 8 bytes: one cache line holds
+// the bounds of eight tiles, a row of 64 pixels.
+struct TileDepth {
+  float zmin = 1.0f;
+  float zmax = 1.0f;
+};
+
+// The buffers of one frame. Row-major, row 0 at the top.
+struct Target {
+  int width = 0, height = 0;
+  int tiles_x = 0, tiles_y = 0;
+  std::vector<float> depth;           // window depth, 1 = far (infinity)
+  std::vector<std::int32_t> count;    // signed shadow-volume count
+  std::vector<TileDepth> tile_depth;  // hi-z, valid after update_tile_depth()
+
+  Target() = default;
+  Target(int w, int h);
+  void clear_depth(float z = 1.0f);
+  void clear_count();
+  // Recomputes every tile's depth bounds from the depth buffer (after the depth pass).
+  void update_tile_depth();
+};
+
+// Work counters of one frame or pass (the papers' fill measures). Added, never reset, by the
+// draw functions.
+struct Counters {
+  std::uint64_t triangles_in = 0;
+  std::uint64_t triangles_clipped = 0;  // needed clipping (near plane or guard band)
+  std::uint64_t triangles_culled = 0;   // nothing left after clipping, or zero area
+  std::uint64_t tiles_touched = 0;      // tiles overlapped by a triangle's bounding box
+  std::uint64_t tiles_skipped = 0;      // of those, rejected whole by the hi-z test
+  std::uint64_t pixels_processed = 0;   // covered pixels that reached the depth test
+  std::uint64_t pixels_passed = 0;      // of those, passed it (an occlusion query's answer)
+  std::uint64_t count_updates = 0;      // count buffer writes
+};
+
+// Depth pass: triangles (3 clip-space vertices each), depth test less, depth write. Both
+// facings are drawn.
+void draw_depth(Target& target, std::span<const glm::vec4> triangles, Counters& counters);
+
+// How a count pass uses the depth test (Everitt & Kilgard; GPU Gems 3 §11.2.1).
+enum class CountRule {
+  zpass,  // fragments in front of the stored depth: front faces add the weight, back subtract
+  zfail,  // fragments at or behind it: front faces subtract the weight, back faces add
+};
+
+// Count pass: each triangle changes the count of the pixels it covers by its signed weight
+// (weights[t], one per triangle), by the rule above, in one write; depth is not written. Tiles
+// whose depth bounds prove that no pixel can pass the rule's test are skipped whole.
+void draw_counts(Target& target, std::span<const glm::vec4> triangles,
+                 std::span<const std::int32_t> weights, CountRule rule, Counters& counters);
+
+}  // namespace shadowvol::soft

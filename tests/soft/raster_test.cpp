@@ -1,0 +1,273 @@
+// The rasterizer's promises: watertight (no pixel of a closed fan or mesh drawn twice or
+// missed), both facings, near-plane clipping with vertices at infinity (w = 0) matching a
+// ray-cast, and the hi-z skipping only tiles that hold no work.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+
+#include "soft/raster.h"
+
+namespace shadowvol::soft {
+namespace {
+
+// A triangle list in clip space straight from NDC x, y (z = 0, w = 1).
+void add_ndc(std::vector<glm::vec4>& out, glm::vec2 a, glm::vec2 b, glm::vec2 c) {
+  out.insert(out.end(), {glm::vec4(a, 0, 1), glm::vec4(b, 0, 1), glm::vec4(c, 0, 1)});
+}
+
+// Counts each triangle once, +1 front, -1 back, on an empty depth buffer (every fragment passes).
+std::vector<std::int32_t> coverage(int w, int h, const std::vector<glm::vec4>& tris) {
+  Target target(w, h);
+  Counters counters;
+  draw_counts(target, tris, std::vector<std::int32_t>(tris.size() / 3, 1), CountRule::zpass,
+              counters);
+  return target.count;
+}
+
+glm::vec2 ndc_of_pixel(int px, int py, int w, int h) {
+  return {(px + 0.5) / w * 2.0 - 1.0, 1.0 - (py + 0.5) / h * 2.0};
+}
+
+TEST(Raster, FanAroundAPointCoversItsPolygonExactlyOnce) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> jitter(-0.3f, 0.3f);
+  const int w = 97, h = 61;
+  for (int trial = 0; trial < 20; ++trial) {
+    const glm::vec2 centre(jitter(rng), jitter(rng));
+    const int n = 5 + trial * 3;
+    std::vector<glm::vec2> ring;
+    for (int i = 0; i < n; ++i) {
+      const float a = 6.2831853f * (i + 0.5f * (jitter(rng) + 0.3f)) / n;
+      ring.push_back(centre + glm::vec2(std::cos(a), std::sin(a)) * 0.9f);
+    }
+    std::vector<glm::vec4> tris;
+    for (int i = 0; i < n; ++i) add_ndc(tris, centre, ring[i], ring[(i + 1) % n]);  // CCW
+    const std::vector<std::int32_t> count = coverage(w, h, tris);
+    int covered = 0;
+    for (int py = 0; py < h; ++py)
+      for (int px = 0; px < w; ++px) {
+        const std::int32_t c = count[py * w + px];
+        ASSERT_TRUE(c == 0 || c == 1) << "pixel " << px << "," << py << " counted " << c;
+        // Inside the outer polygon? (Pixels within a hair of its boundary are the fill rule's.)
+        const glm::vec2 p = ndc_of_pixel(px, py, w, h);
+        float nearest = 1e9f;
+        bool inside = true;
+        for (int i = 0; i < n; ++i) {
+          const glm::vec2 e = ring[(i + 1) % n] - ring[i], d = p - ring[i];
+          const float side = (e.x * d.y - e.y * d.x) / glm::length(e);
+          inside &= side > 0.0f;
+          nearest = std::min(nearest, std::abs(side));
+        }
+        if (nearest > 1e-4f) {
+          EXPECT_EQ(c, inside ? 1 : 0) << "pixel " << px << "," << py;
+        }
+        covered += c;
+      }
+    EXPECT_GT(covered, w * h / 4);
+  }
+}
+
+class JitteredGrid : public ::testing::TestWithParam<bool> {};
+
+// Vertices on a grid that overhangs the viewport, jittered inside their cells (the border ones
+// stay on the overhang, so that the mesh covers the whole viewport). With snapping, every
+// vertex sits on a pixel centre, so that many edges run exactly through pixel centres and the
+// top-left rule decides them.
+TEST_P(JitteredGrid, CoversEveryPixelOnce) {
+  const bool on_pixel_centres = GetParam();
+  std::mt19937 rng(11);
+  const int w = 64, h = 48, n = 9;
+  std::uniform_real_distribution<float> jitter(-0.45f, 0.45f);
+  auto snap = [&](float ndc, int size) {
+    if (!on_pixel_centres) return ndc;
+    const float pixel = std::round((ndc + 1.0f) * 0.5f * size - 0.5f);
+    return (pixel + 0.5f) / size * 2.0f - 1.0f;
+  };
+  std::vector<glm::vec2> grid;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool border = i == 0 || j == 0 || i == n || j == n;
+      grid.emplace_back(snap(-1.2f + 2.4f * (i + (border ? 0.0f : jitter(rng))) / n, w),
+                        snap(-1.2f + 2.4f * (j + (border ? 0.0f : jitter(rng))) / n, h));
+    }
+  std::vector<glm::vec4> tris;
+  auto at = [&](int i, int j) { return grid[j * (n + 1) + i]; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      add_ndc(tris, at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      add_ndc(tris, at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  for (std::int32_t c : coverage(w, h, tris)) ASSERT_EQ(c, 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Vertices, JitteredGrid, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "on_pixel_centres" : "free"; });
+
+TEST(Raster, BackFacesSubtractAndTheSharedEdgeIsDrawnOnce) {
+  std::vector<glm::vec4> tris;
+  add_ndc(tris, {-0.8f, -0.8f}, {0.8f, -0.8f}, {0.0f, 0.8f});  // CCW: front
+  add_ndc(tris, {-0.8f, -0.8f}, {0.0f, 0.8f}, {0.8f, -0.8f});  // CW: back
+  for (std::int32_t c : coverage(40, 40, tris)) ASSERT_EQ(c, 0);
+  // Two triangles sharing a vertical edge through pixel centres (x = 0 at 40 px: between
+  // columns 19 and 20, so move it onto the centre of column 20: x_ndc = 0.025).
+  std::vector<glm::vec4> pair;
+  add_ndc(pair, {-0.5f, -0.5f}, {0.025f, -0.5f}, {0.025f, 0.5f});
+  add_ndc(pair, {0.025f, -0.5f}, {0.6f, -0.5f}, {0.025f, 0.5f});
+  const std::vector<std::int32_t> count = coverage(40, 40, pair);
+  int on_edge = 0;
+  for (int py = 0; py < 40; ++py) {
+    ASSERT_LE(count[py * 40 + 20], 1);
+    on_edge += count[py * 40 + 20];
+  }
+  EXPECT_GT(on_edge, 10);
+}
+
+// An eye-space quad crossing the near plane, and a shadow-volume-like triangle with two vertices
+// at infinity, against a ray-cast per pixel: the same pixels, but for those within a pixel of
+// an edge of the projected shape.
+TEST(Raster, ClipsAtTheNearPlaneAndDrawsVerticesAtInfinity) {
+  const int w = 80, h = 60;
+  const float near = 0.1f;
+  const glm::mat4 proj = glm::infinitePerspective(glm::radians(70.0f), float(w) / h, near);
+  struct Case {
+    glm::vec4 eye[3];  // eye space, homogeneous
+    bool crosses_near;
+  };
+  const Case cases[] = {
+      // A floor triangle running from behind the camera to far ahead (crosses the near plane).
+      {{{-3, -1, 2, 1}, {3, -1, 2, 1}, {0, -1, -30, 1}}, true},
+      // A side-quad triangle: one finite vertex, two directions (w = 0) going away and down-left.
+      {{{0.5f, 0.2f, -2, 1}, {-0.2f, -0.3f, -1, 0}, {0.4f, -0.5f, -1, 0}}, false},
+  };
+  for (const Case& c : cases) {
+    std::vector<glm::vec4> tri;
+    for (const glm::vec4& e : c.eye) tri.push_back(proj * e);
+    Target target(w, h);
+    Counters counters;
+    draw_counts(target, tri, std::vector<std::int32_t>{1}, CountRule::zpass, counters);
+    // Ray-cast: the pixel's ray from the eye, against the triangle as the set of positive
+    // combinations of its homogeneous vertices (exactly what the rasterizer draws), beyond near.
+    const glm::mat4 inv = glm::inverse(proj);
+    int mismatches = 0, covered = 0;
+    for (int py = 0; py < h; ++py)
+      for (int px = 0; px < w; ++px) {
+        const glm::vec2 ndc = ndc_of_pixel(px, py, w, h);
+        glm::vec4 far_point = inv * glm::vec4(ndc, 1.0f, 1.0f);  // a point on the ray
+        const glm::dvec3 d = glm::normalize(glm::dvec3(far_point));
+        // Solve l0 E0 + l1 E1 + l2 E2 = (t d, 1) up to scale: 4 equations, 4 unknowns (l, t).
+        glm::dmat4 m(glm::dvec4(c.eye[0]), glm::dvec4(c.eye[1]), glm::dvec4(c.eye[2]),
+                     -glm::dvec4(d, 0.0));
+        const glm::dvec4 sol = glm::inverse(m) * glm::dvec4(0, 0, 0, 1);
+        const bool hit = sol.x > 0 && sol.y > 0 && sol.z > 0 && sol.w * d.z < -near;
+        const bool drawn = target.count[py * w + px] != 0;
+        covered += drawn;
+        if (hit != drawn) {
+          // Allowed only within a pixel of the shape's edge: a neighbour disagrees with itself.
+          bool boundary = false;
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              const int x = px + dx, y = py + dy;
+              if (x >= 0 && y >= 0 && x < w && y < h)
+                boundary |= (target.count[y * w + x] != 0) != drawn;
+            }
+          mismatches += !boundary;
+        }
+      }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(covered, 50);
+    EXPECT_EQ(counters.triangles_clipped, c.crosses_near ? 1u : 0u);
+  }
+}
+
+// A jittered floor grid running from behind the camera to far ahead: the near plane cuts many
+// shared edges, and the cut must leave neither gaps nor overlaps.
+TEST(Raster, NearPlaneCutsKeepAMeshWatertight) {
+  const int w = 96, h = 64, n = 24;
+  const glm::mat4 proj = glm::infinitePerspective(glm::radians(75.0f), float(w) / h, 0.05f);
+  const glm::mat4 view = glm::rotate(glm::mat4(1.0f), 0.5f, glm::vec3(1, 0, 0));  // look down
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> jitter(-0.4f, 0.4f);
+  std::vector<glm::vec4> grid;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool border = i == 0 || j == 0 || i == n || j == n;
+      const float x = -60.0f + 120.0f * (i + (border ? 0.0f : jitter(rng))) / n;
+      const float z = 3.0f - 63.0f * (j + (border ? 0.0f : jitter(rng))) / n;
+      grid.push_back(proj * view * glm::vec4(x, -1.0f, z, 1.0f));
+    }
+  std::vector<glm::vec4> tris;
+  auto at = [&](int i, int j) { return grid[j * (n + 1) + i]; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {  // counter-clockwise seen from above (+y)
+      tris.insert(tris.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      tris.insert(tris.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  Target target(w, h);
+  Counters counters;
+  draw_counts(target, tris, std::vector<std::int32_t>(tris.size() / 3, 1), CountRule::zpass,
+              counters);
+  EXPECT_GT(counters.triangles_clipped, 4u);
+  // Every pixel whose ray meets the floor well inside the grid is covered exactly once.
+  const glm::mat4 inv = glm::inverse(proj * view);
+  int checked = 0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const std::int32_t c = target.count[py * w + px];
+      ASSERT_LE(std::abs(c), 1) << px << "," << py;
+      const glm::vec2 ndc = ndc_of_pixel(px, py, w, h);
+      const glm::vec4 a = inv * glm::vec4(ndc, -1.0f, 1.0f), b = inv * glm::vec4(ndc, 0.5f, 1.0f);
+      const glm::vec3 from = glm::vec3(a) / a.w, to = glm::vec3(b) / b.w;
+      const glm::vec3 d = to - from;
+      if (d.y >= 0.0f) continue;
+      const glm::vec3 hit = from + d * ((-1.0f - from.y) / d.y);
+      if (std::abs(hit.x) < 50.0f && hit.z < 1.0f && hit.z > -50.0f) {
+        ++checked;
+        EXPECT_EQ(c, 1) << "pixel " << px << "," << py;
+      }
+    }
+  EXPECT_GT(checked, w * h / 4);
+}
+
+TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
+  const int w = 64, h = 64;
+  const glm::mat4 proj = glm::infinitePerspective(glm::radians(60.0f), 1.0f, 0.1f);
+  Target target(w, h);
+  Counters counters;
+  // A wall at eye depth 5 over the whole view: depth everywhere about 1 - 2 * 0.1 / 5 / 2.
+  std::vector<glm::vec4> wall = {proj * glm::vec4(-50, -50, -5, 1),
+                                 proj * glm::vec4(50, -50, -5, 1), proj * glm::vec4(0, 50, -5, 1)};
+  draw_depth(target, wall, counters);
+  target.update_tile_depth();
+  EXPECT_NEAR(target.depth[32 * w + 32], 1.0f - 0.1f / 5.0f, 1e-5f);
+  // A triangle far behind the wall: z-pass cannot change any pixel, so every tile is skipped.
+  std::vector<glm::vec4> behind = {proj * glm::vec4(-1, -1, -50, 1),
+                                   proj * glm::vec4(1, -1, -50, 1), proj * glm::vec4(0, 1, -50, 1)};
+  Counters zpass;
+  draw_counts(target, behind, std::vector<std::int32_t>{1}, CountRule::zpass, zpass);
+  EXPECT_GT(zpass.tiles_touched, 0u);
+  EXPECT_EQ(zpass.tiles_skipped, zpass.tiles_touched);
+  EXPECT_EQ(zpass.count_updates, 0u);
+  // The same triangle under z-fail counts in every pixel it covers (it is behind the wall).
+  Counters zfail;
+  draw_counts(target, behind, std::vector<std::int32_t>{1}, CountRule::zfail, zfail);
+  EXPECT_EQ(zfail.tiles_skipped, 0u);
+  EXPECT_EQ(zfail.count_updates, zfail.pixels_processed);
+  EXPECT_GT(zfail.count_updates, 0u);
+  // A triangle at infinity (all w = 0) lies at depth 1: behind the wall for z-fail too.
+  std::vector<glm::vec4> at_infinity = {proj * glm::vec4(-1, -1, -5, 0),
+                                        proj * glm::vec4(1, -1, -5, 0),
+                                        proj * glm::vec4(0, 1, -5, 0)};
+  Target empty(w, h);
+  Counters inf;
+  draw_depth(empty, at_infinity, inf);
+  EXPECT_EQ(inf.pixels_passed, 0u);  // depth 1 is not less than the cleared 1
+  EXPECT_GT(inf.pixels_processed, 0u);
+}
+
+}  // namespace
+}  // namespace shadowvol::soft
