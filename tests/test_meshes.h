@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "scene/shapes.h"
 
 namespace shadowvol::testing {
 
@@ -22,20 +23,8 @@ inline void add_triangle(Mesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
 }
 
-// Axis-aligned box [lo, hi], outward-facing counter-clockwise triangles, shared vertices.
 inline Mesh box(glm::vec3 lo, glm::vec3 hi, bool with_top = true) {
-  Mesh m;
-  for (int i = 0; i < 8; ++i)
-    m.positions.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-  // Each quad is listed counter-clockwise seen from outside.
-  const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (int q = 0; q < 6; ++q) {
-    if (!with_top && q == 1) continue;  // q == 1 is the +z face
-    const auto* v = quads[q];
-    m.indices.insert(m.indices.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
-  }
-  return m;
+  return make_box(lo, hi, with_top);
 }
 
 inline Mesh merged(const Mesh& a, const Mesh& b) {

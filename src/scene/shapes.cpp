@@ -38,4 +38,27 @@ Mesh make_bumpy_torus_with(std::size_t triangles) {
   return make_bumpy_torus(rings, segments);
 }
 
+Mesh make_box(glm::vec3 lo, glm::vec3 hi, bool with_top) {
+  Mesh m;
+  for (int i = 0; i < 8; ++i)  // bit 0: x, bit 1: y, bit 2: z
+    m.positions.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+  // Each face's corners counter-clockwise seen from outside: -z, +z, -y, +y, -x, +x.
+  const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (int q = 0; q < 6; ++q) {
+    if (!with_top && q == 1) continue;
+    const std::uint32_t* v = quads[q];
+    m.indices.insert(m.indices.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
+  }
+  return m;
+}
+
+Mesh make_ground(float half_size) {
+  Mesh m;
+  const float h = half_size;
+  m.positions = {{-h, 0, -h}, {-h, 0, h}, {h, 0, h}, {h, 0, -h}};
+  m.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from +y
+  return m;
+}
+
 }  // namespace shadowvol

@@ -5,6 +5,8 @@
 
 #include <cstddef>
 
+#include <glm/vec3.hpp>
+
 #include "core/mesh.h"
 
 namespace shadowvol {
@@ -19,5 +21,13 @@ Mesh make_bumpy_torus(int rings, int segments, float major_radius = 1.0f,
 
 // A torus with about `triangles` triangles (rings:segments about 2:1).
 Mesh make_bumpy_torus_with(std::size_t triangles);
+
+// The axis-aligned box [lo, hi], 12 outward-facing triangles on 8 shared vertices; without its
+// top (+z) face when `with_top` is false: an open box with four boundary edges.
+Mesh make_box(glm::vec3 lo, glm::vec3 hi, bool with_top = true);
+
+// A square of side 2 * half_size in the y = 0 plane, centred on the origin, facing +y: two
+// triangles, four boundary edges (a ground plane).
+Mesh make_ground(float half_size);
 
 }  // namespace shadowvol

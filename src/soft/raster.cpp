@@ -16,12 +16,14 @@ Target::Target(int w, int h)
       tiles_y((h + kTileSize - 1) / kTileSize),
       depth(static_cast<std::size_t>(w) * h, 1.0f),
       count(static_cast<std::size_t>(w) * h, 0),
+      id(static_cast<std::size_t>(w) * h, kNoId),
       tile_depth(static_cast<std::size_t>(tiles_x) * tiles_y) {
   assert(w > 0 && h > 0 && w <= kMaxViewport && h <= kMaxViewport);
 }
 
 void Target::clear_depth(float z) {
   std::fill(depth.begin(), depth.end(), z);
+  std::fill(id.begin(), id.end(), kNoId);
   std::fill(tile_depth.begin(), tile_depth.end(), TileDepth{z, z});
 }
 
@@ -259,13 +261,16 @@ void for_each_setup(const Target& target, std::span<const glm::vec4> triangles, 
 
 }  // namespace
 
-void draw_depth(Target& target, std::span<const glm::vec4> triangles, Counters& counters) {
-  for_each_setup(target, triangles, counters, [&](std::size_t, const Setup& s) {
+void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
+                Counters& counters) {
+  for_each_setup(target, triangles, counters, [&](std::size_t t, const Setup& s) {
+    const auto id = static_cast<std::uint32_t>(first_id + t);
     raster(
         target, s, counters, [](const TileDepth&, float, float) { return true; },
         [&](std::size_t pixel, float z) {
           if (z < target.depth[pixel]) {
             target.depth[pixel] = z;
+            target.id[pixel] = id;
             ++counters.pixels_passed;
           }
         });

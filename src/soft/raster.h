@@ -49,15 +49,17 @@ struct TileDepth {
 
 // The buffers of one frame. Row-major, row 0 at the top.
 struct Target {
+  static constexpr std::uint32_t kNoId = 0xffffffffu;
   int width = 0, height = 0;
   int tiles_x = 0, tiles_y = 0;
   std::vector<float> depth;           // window depth, 1 = far (infinity)
   std::vector<std::int32_t> count;    // signed shadow-volume count
+  std::vector<std::uint32_t> id;      // what the depth pass left visible: kNoId or an id
   std::vector<TileDepth> tile_depth;  // hi-z, valid after update_tile_depth()
 
   Target() = default;
   Target(int w, int h);
-  void clear_depth(float z = 1.0f);
+  void clear_depth(float z = 1.0f);  // and the ids
   void clear_count();
   // Recomputes every tile's depth bounds from the depth buffer (after the depth pass).
   void update_tile_depth();
@@ -76,9 +78,10 @@ struct Counters {
   std::uint64_t count_updates = 0;      // count buffer writes
 };
 
-// Depth pass: triangles (3 clip-space vertices each), depth test less, depth write. Both
-// facings are drawn.
-void draw_depth(Target& target, std::span<const glm::vec4> triangles, Counters& counters);
+// Depth pass: triangles (3 clip-space vertices each), depth test less, depth write, and the
+// id first_id + t of triangle t written where it passes. Both facings are drawn.
+void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
+                Counters& counters);
 
 // How a count pass uses the depth test (Everitt & Kilgard; GPU Gems 3 §11.2.1).
 enum class CountRule {

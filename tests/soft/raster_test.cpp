@@ -241,7 +241,8 @@ TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
   // A wall at eye depth 5 over the whole view: depth everywhere about 1 - 2 * 0.1 / 5 / 2.
   std::vector<glm::vec4> wall = {proj * glm::vec4(-50, -50, -5, 1),
                                  proj * glm::vec4(50, -50, -5, 1), proj * glm::vec4(0, 50, -5, 1)};
-  draw_depth(target, wall, counters);
+  draw_depth(target, wall, 7, counters);
+  EXPECT_EQ(target.id[32 * w + 32], 7u);
   target.update_tile_depth();
   EXPECT_NEAR(target.depth[32 * w + 32], 1.0f - 0.1f / 5.0f, 1e-5f);
   // A triangle far behind the wall: z-pass cannot change any pixel, so every tile is skipped.
@@ -264,7 +265,8 @@ TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
                                         proj * glm::vec4(0, 1, -5, 0)};
   Target empty(w, h);
   Counters inf;
-  draw_depth(empty, at_infinity, inf);
+  draw_depth(empty, at_infinity, 0, inf);
+  EXPECT_EQ(empty.id[32 * w + 32], Target::kNoId);
   EXPECT_EQ(inf.pixels_passed, 0u);  // depth 1 is not less than the cleared 1
   EXPECT_GT(inf.pixels_processed, 0u);
 }

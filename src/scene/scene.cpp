@@ -1,0 +1,186 @@
+#include "scene/scene.h"
+
+#include <cmath>
+#include <utility>
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "scene/shapes.h"
+
+namespace shadowvol {
+
+glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
+
+glm::mat4 Camera::projection(float aspect) const {
+  return glm::infinitePerspective(glm::radians(fov_y_degrees), aspect, near);
+}
+
+SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
+                        const glm::vec3& color) {
+  auto shared = std::make_shared<const Mesh>(std::move(mesh));
+  auto topology = std::make_shared<const Topology>(build_topology(*shared));
+  return {std::move(name), std::move(shared), std::move(topology), transform, {color}};
+}
+
+namespace {
+
+glm::mat4 place(glm::vec3 at, float yaw_degrees = 0.0f, glm::vec3 scale = glm::vec3(1.0f)) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), at);
+  m = glm::rotate(m, glm::radians(yaw_degrees), glm::vec3(0, 1, 0));
+  return glm::scale(m, scale);
+}
+
+// Turns +z (the open side of make_box(..., false), the axis of make_bumpy_torus) to +y.
+const glm::mat4 kZUp = glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0));
+
+void add_ground(Scene& s, float half_size = 7.0f) {
+  s.objects.push_back(make_object("ground", make_ground(half_size), glm::mat4(1.0f), {0.75f, 0.75f, 0.72f}));
+}
+
+void add_demo_objects(Scene& s) {
+  add_ground(s);
+  s.objects.push_back(make_object("torus", make_bumpy_torus(96, 32, 0.9f, 0.3f),
+                                  place({-1.7f, 1.2f, 0.2f}, 20.0f) *
+                                      glm::rotate(glm::mat4(1.0f), glm::radians(70.0f), glm::vec3(1, 0, 0)),
+                                  {0.85f, 0.35f, 0.25f}));
+  s.objects.push_back(make_object("box", make_box(glm::vec3(-0.6f), glm::vec3(0.6f)),
+                                  place({1.6f, 0.6f, 0.6f}, 30.0f), {0.3f, 0.55f, 0.85f}));
+  s.objects.push_back(make_object("open_box", make_box({-0.7f, -0.7f, -0.5f}, {0.7f, 0.7f, 0.5f}, false),
+                                  place({0.2f, 0.5f, -2.2f}, -15.0f) * kZUp, {0.9f, 0.75f, 0.3f}));
+}
+
+Scene demo() {
+  Scene s;
+  s.name = "demo";
+  add_demo_objects(s);
+  s.lights.push_back({{4.0f, 7.0f, 5.0f, 1.0f}, {1.0f, 0.97f, 0.9f}, 1.0f});
+  s.camera = {{0.0f, 4.5f, 9.0f}, {0.0f, 0.6f, -0.3f}};
+  return s;
+}
+
+Scene camera_in_shadow() {
+  Scene s;
+  s.name = "camera-in-shadow";
+  add_ground(s);
+  // A slab between the light and the eye: the eye sits in the slab's shadow volume.
+  s.objects.push_back(make_object("slab", make_box({-3.0f, -0.2f, -3.0f}, {3.0f, 0.2f, 3.0f}),
+                                  place({0.0f, 5.0f, 3.0f}), {0.5f, 0.5f, 0.55f}));
+  s.objects.push_back(make_object("box", make_box(glm::vec3(-0.6f), glm::vec3(0.6f)),
+                                  place({0.8f, 0.6f, -2.5f}, 25.0f), {0.3f, 0.55f, 0.85f}));
+  s.objects.push_back(make_object("torus", make_bumpy_torus(64, 24, 0.8f, 0.28f),
+                                  place({-1.5f, 0.35f, -1.5f}) * kZUp, {0.85f, 0.35f, 0.25f}));
+  s.lights.push_back({{0.5f, 12.0f, 6.0f, 1.0f}, {1.0f, 1.0f, 1.0f}, 1.0f});
+  s.camera = {{0.0f, 2.0f, 3.5f}, {0.0f, 0.3f, -3.0f}};
+  return s;
+}
+
+Scene light_in_view() {
+  Scene s;
+  s.name = "light-in-view";
+  add_ground(s);
+  s.objects.push_back(make_object("torus", make_bumpy_torus(96, 32, 0.8f, 0.25f),
+                                  place({0.0f, 0.9f, 0.0f}, 0.0f, glm::vec3(1.4f)) * kZUp,
+                                  {0.85f, 0.35f, 0.25f}));
+  for (int i = 0; i < 4; ++i) {
+    const float a = glm::radians(45.0f + 90.0f * i);
+    s.objects.push_back(make_object("box" + std::to_string(i), make_box(glm::vec3(-0.35f), glm::vec3(0.35f)),
+                                    place({2.2f * std::cos(a), 0.35f, 2.2f * std::sin(a)}, 10.0f * i),
+                                    {0.3f, 0.55f, 0.85f}));
+  }
+  // The light hangs inside the torus, in view; the camera looks at it from close by.
+  s.lights.push_back({{0.0f, 1.3f, 0.0f, 1.0f}, {1.0f, 0.95f, 0.85f}, 1.0f});
+  s.camera = {{0.3f, 2.2f, 3.2f}, {0.0f, 1.0f, 0.0f}};
+  return s;
+}
+
+Scene directional() {
+  Scene s;
+  s.name = "directional";
+  add_demo_objects(s);
+  s.lights.push_back({{0.45f, 1.0f, 0.35f, 0.0f}, {1.0f, 0.97f, 0.9f}, 1.0f});
+  s.camera = {{0.0f, 4.5f, 9.0f}, {0.0f, 0.6f, -0.3f}};
+  return s;
+}
+
+Mesh fin_box() {  // a closed box with a fin on one top edge: three faces on that edge
+  Mesh m = make_box(glm::vec3(-0.5f), glm::vec3(0.5f));
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  m.positions.emplace_back(0.0f, -1.2f, 1.0f);
+  m.indices.insert(m.indices.end(), {4, 5, base});  // on edge 4-5 (top, front)
+  return m;
+}
+
+Mesh flipped_box() {  // one triangle wound the wrong way: three inconsistent edges
+  Mesh m = make_box(glm::vec3(-0.5f), glm::vec3(0.5f));
+  std::swap(m.indices[4], m.indices[5]);
+  return m;
+}
+
+Mesh coincident_box() {  // one face doubled, once each way
+  Mesh m = make_box(glm::vec3(-0.5f), glm::vec3(0.5f));
+  const std::vector<std::uint32_t> top(m.indices.begin() + 6, m.indices.begin() + 12);
+  m.indices.insert(m.indices.end(), top.begin(), top.end());
+  m.indices.insert(m.indices.end(), {top[0], top[2], top[1]});
+  return m;
+}
+
+Mesh book() {  // four pages on one spine, with slivers and a collapsed triangle
+  Mesh m;
+  auto add = [&m](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.insert(m.positions.end(), {a, b, c});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
+  };
+  for (glm::vec3 tip : {glm::vec3(0.9f, 0.1f, 0), glm::vec3(0, 0.9f, 0.2f), glm::vec3(-0.9f, 0.2f, 0),
+                        glm::vec3(0.1f, 0.6f, -0.8f)})
+    add({0, 0, -0.6f}, {0, 0, 0.6f}, tip);
+  add({0, 0, -0.6f}, {0, 0, 0}, {0, 0, 0.6f});  // zero area on the spine
+  add({0.5f, 0.5f, 0}, {0.5f, 0.5f, 0}, {0, 0.9f, 0.2f});  // collapsed
+  return m;
+}
+
+Scene nonmanifold() {
+  Scene s;
+  s.name = "nonmanifold";
+  add_ground(s);
+  s.objects.push_back(make_object("fin_box", fin_box(), place({-2.0f, 0.6f, 0.0f}, 25.0f), {0.85f, 0.35f, 0.25f}));
+  s.objects.push_back(make_object("flipped_box", flipped_box(), place({0.0f, 0.6f, 0.8f}, -20.0f), {0.3f, 0.55f, 0.85f}));
+  s.objects.push_back(make_object("coincident_box", coincident_box(), place({2.0f, 0.6f, 0.0f}, 40.0f), {0.4f, 0.75f, 0.4f}));
+  s.objects.push_back(make_object("book", book(), place({0.2f, 1.4f, -2.0f}, 30.0f, glm::vec3(1.5f)), {0.9f, 0.75f, 0.3f}));
+  s.objects.push_back(make_object("open_box", make_box({-0.6f, -0.6f, -0.4f}, {0.6f, 0.6f, 0.4f}, false),
+                                  place({-1.0f, 1.6f, -1.2f}, 10.0f) * glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(1, 0, 1)),
+                                  {0.7f, 0.4f, 0.8f}));
+  s.lights.push_back({{3.0f, 6.5f, 4.0f, 1.0f}, {1.0f, 0.97f, 0.9f}, 1.0f});
+  s.camera = {{0.0f, 4.0f, 8.0f}, {0.0f, 0.6f, -0.5f}};
+  return s;
+}
+
+struct Builtin {
+  std::string_view name;
+  Scene (*make)();
+};
+constexpr Builtin kBuiltins[] = {{"demo", demo},
+                                 {"camera-in-shadow", camera_in_shadow},
+                                 {"light-in-view", light_in_view},
+                                 {"directional", directional},
+                                 {"nonmanifold", nonmanifold}};
+
+}  // namespace
+
+std::vector<std::string_view> builtin_scene_names() {
+  std::vector<std::string_view> names;
+  for (const Builtin& b : kBuiltins) names.push_back(b.name);
+  return names;
+}
+
+Expected<Scene> builtin_scene(std::string_view name) {
+  for (const Builtin& b : kBuiltins)
+    if (b.name == name) return b.make();
+  std::string known;
+  for (const Builtin& b : kBuiltins) known += (known.empty() ? "" : ", ") + std::string(b.name);
+  return make_error("unknown scene '" + std::string(name) + "': the built-in scenes are " + known);
+}
+
+}  // namespace shadowvol

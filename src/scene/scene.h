@@ -1,0 +1,74 @@
+// shadowvol scene: what a frame draws. Objects (mesh + topology + transform + material),
+// lights, a camera; and the built-in scenes, each one there to break something.
+//
+// Owns: the scene description and its invariants (every object's topology belongs to its mesh;
+// lights are valid, see core/volume.h check_light). No rendering, no tracing.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/expected.h"
+#include "core/mesh.h"
+#include "core/topology.h"
+
+namespace shadowvol {
+
+struct Material {
+  glm::vec3 color{0.8f};  // linear RGB albedo
+};
+
+struct SceneObject {
+  std::string name;
+  std::shared_ptr<const Mesh> mesh;          // object space
+  std::shared_ptr<const Topology> topology;  // of *mesh, built once
+  glm::mat4 transform{1.0f};                 // object space -> world space
+  Material material;
+};
+
+struct SceneLight {
+  glm::vec4 position{0.0f, 10.0f, 0.0f, 1.0f};  // world, homogeneous: w = 1 point, 0 directional
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 2.0f, 6.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_degrees = 45.0f;
+  float near = 0.1f;  // the far plane is at infinity
+
+  glm::mat4 view() const;
+  // Infinite-far OpenGL projection (Everitt & Kilgard 2002): points at infinity reach depth 1.
+  glm::mat4 projection(float aspect) const;
+};
+
+struct Scene {
+  std::string name;
+  std::vector<SceneObject> objects;
+  std::vector<SceneLight> lights;
+  Camera camera;
+  glm::vec3 ambient{0.12f};
+};
+
+// An object from a mesh: builds its topology (welding exactly).
+SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
+                        const glm::vec3& color);
+
+// The built-in scenes:
+//   demo              several objects, open and closed meshes, a ground plane, a point light
+//   camera-in-shadow  the eye inside a shadow volume: z-pass must fail, z-fail and auto must not
+//   light-in-view     a point light inside the view frustum, volumes crossing the near plane
+//   directional       the demo objects under a directional light
+//   nonmanifold       open, non-manifold, flipped-face, sliver and coincident-face casters
+Expected<Scene> builtin_scene(std::string_view name);
+std::vector<std::string_view> builtin_scene_names();
+
+}  // namespace shadowvol
