@@ -1,12 +1,14 @@
 // The shadowvol command line. Thin by design: parses arguments, calls the library, prints.
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
-#include <optional>
-#include <vector>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -15,7 +17,13 @@
 
 #include "core/topology.h"
 #include "core/volume.h"
+#include "render/renderer.h"
 #include "scene/mesh_io.h"
+#include "scene/scene.h"
+#include "trace/reference.h"
+#include "verify/verify.h"
+
+#include <stb/stb_image_write.h>
 
 #ifndef SHADOWVOL_VERSION
 #error "SHADOWVOL_VERSION is set by CMake"
@@ -149,10 +157,11 @@ int inspect(const std::string& file, bool json, float weld_epsilon,
     if (light) {
       out["light"] = {light->x, light->y, light->z, light->w};
       for (const VolumeStats& v : volumes)
-        out["volumes"][std::string(to_string(v.generator))] = {
-            {"side_quads", v.side_quads}, {"unit_weight_quads", v.unit_quads},
-            {"max_weight", v.max_weight}, {"light_caps", v.light_caps},
-            {"dark_caps", v.dark_caps}};
+        out["volumes"][std::string(to_string(v.generator))] = {{"side_quads", v.side_quads},
+                                                               {"unit_weight_quads", v.unit_quads},
+                                                               {"max_weight", v.max_weight},
+                                                               {"light_caps", v.light_caps},
+                                                               {"dark_caps", v.dark_caps}};
     }
     std::cout << out.dump(2) << "\n";
     return 0;
@@ -160,16 +169,151 @@ int inspect(const std::string& file, bool json, float weld_epsilon,
   print_report(file, topo.report);
   if (light) {
     std::printf("\nvolumes under the %s light (%g, %g, %g, %g)\n",
-                light->w == 0.0f ? "directional" : "point", light->x, light->y, light->z,
-                light->w);
-    std::printf("  %-13s %11s %17s %11s %11s %10s\n", "generator", "side quads",
-                "as +-1 quads", "max |w|", "light caps", "dark caps");
+                light->w == 0.0f ? "directional" : "point", light->x, light->y, light->z, light->w);
+    std::printf("  %-13s %11s %17s %11s %11s %10s\n", "generator", "side quads", "as +-1 quads",
+                "max |w|", "light caps", "dark caps");
     for (const VolumeStats& v : volumes)
       std::printf("  %-13s %11zu %17lld %11d %11zu %10zu\n",
                   std::string(to_string(v.generator)).c_str(), v.side_quads,
                   static_cast<long long>(v.unit_quads), v.max_weight, v.light_caps, v.dark_caps);
   }
   return 0;
+}
+
+// A built-in scene by name, or a mesh file on a default stage.
+Expected<Scene> load_scene(const std::string& name) {
+  auto builtin = builtin_scene(name);
+  if (builtin) return builtin;
+  std::error_code ec;
+  if (!std::filesystem::exists(name, ec)) return builtin.error();  // lists the built-in names
+  auto loaded = load_mesh(name);
+  if (!loaded) return loaded.error();
+  for (const std::string& w : loaded->warnings) std::cerr << "shadowvol: warning: " << w << "\n";
+  return default_stage(std::filesystem::path(name).filename().string(), std::move(loaded->mesh));
+}
+
+Expected<std::pair<int, int>> parse_size(const std::string& text) {
+  int w = 0, h = 0;
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, w);
+  if (ec == std::errc() && p != end && (*p == 'x' || *p == 'X')) {
+    auto [q, ec2] = std::from_chars(p + 1, end, h);
+    if (ec2 == std::errc() && q == end) return std::pair{w, h};
+  }
+  return make_error("--size: '" + text + "' is not WIDTHxHEIGHT, e.g. 1280x720");
+}
+
+struct RenderArgs {
+  std::string scene = "demo";
+  std::string method = "auto";
+  std::string generator = "auto";
+  std::string size = "960x540";
+  std::string out = "shadowvol.png";
+  bool stats = false;
+  int frames = 1;
+};
+
+int render(const RenderArgs& args) {
+  auto scene = load_scene(args.scene);
+  if (!scene) return fail(scene.error().message);
+  for (const SceneLight& l : scene->lights)
+    if (auto ok = check_light(l.position); !ok)
+      return fail("scene " + scene->name + ": " + ok.error().message);
+  auto method = parse_method(args.method);
+  if (!method) return fail("--method: " + method.error().message);
+  auto generator = parse_generator(args.generator);
+  if (!generator) return fail("--generator: " + generator.error().message);
+  auto size = parse_size(args.size);
+  if (!size) return fail(size.error().message);
+  RenderOptions options{size->first, size->second, *method, *generator};
+  if (auto ok = check_options(options); !ok) return fail("--size: " + ok.error().message);
+  if (args.frames < 1)
+    return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
+
+  Renderer renderer;
+  Frame frame;
+  StatusLine status;
+  for (int i = 0; i < args.frames; ++i) {
+    if (args.frames > 1)
+      status.show("frame " + std::to_string(i + 1) + " of " + std::to_string(args.frames));
+    frame = renderer.render(*scene, options);
+  }
+  status.clear();
+  const Image& img = frame.image;
+  if (stbi_write_png(args.out.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4) ==
+      0)
+    return fail(args.out + ": cannot write the image (is the directory there and writable?)");
+  std::cout << "wrote " << args.out << " (" << scene->name << ", " << img.width << "x" << img.height
+            << ", " << to_string(*method) << ")\n";
+  if (args.stats) {
+    const FrameStats& s = frame.stats;
+    std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms\n", s.ms_depth,
+                s.ms_volumes, s.ms_counts, s.ms_shade);
+    std::printf("  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d\n",
+                s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail);
+    std::printf(
+        "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z,"
+        " %llu pixels processed, %llu count updates\n",
+        (unsigned long long)s.counts.triangles_in, (unsigned long long)s.counts.triangles_clipped,
+        (unsigned long long)s.counts.tiles_touched, (unsigned long long)s.counts.tiles_skipped,
+        (unsigned long long)s.counts.pixels_processed, (unsigned long long)s.counts.count_updates);
+  }
+  return 0;
+}
+
+struct VerifyArgs {
+  std::string scene = "demo";
+  std::string method = "auto";
+  std::string generator = "auto";
+  std::string size = "480x270";
+  std::string diff;
+  bool json = false;
+};
+
+int verify(const VerifyArgs& args) {
+  auto scene = load_scene(args.scene);
+  if (!scene) return fail(scene.error().message);
+  auto method = parse_method(args.method);
+  if (!method) return fail("--method: " + method.error().message);
+  auto generator = parse_generator(args.generator);
+  if (!generator) return fail("--generator: " + generator.error().message);
+  auto size = parse_size(args.size);
+  if (!size) return fail(size.error().message);
+  RenderOptions options{size->first, size->second, *method, *generator};
+  if (auto ok = check_options(options); !ok) return fail("--size: " + ok.error().message);
+
+  Renderer renderer;
+  const Frame frame = renderer.render(*scene, options);
+  auto reference = trace_reference(*scene, options.width, options.height);
+  if (!reference) return fail(reference.error().message);
+  const Comparison c = compare(frame, *reference);
+  if (!args.diff.empty()) {
+    const Image img = diff_image(frame, c);
+    if (stbi_write_png(args.diff.c_str(), img.width, img.height, 4, img.rgba.data(),
+                       img.width * 4) == 0)
+      return fail(args.diff + ": cannot write the image (is the directory there and writable?)");
+  }
+  if (args.json) {
+    std::cout << nlohmann::json{{"scene", scene->name},
+                                {"method", std::string(to_string(*method))},
+                                {"generator", std::string(to_string(*generator))},
+                                {"backend", "soft"},
+                                {"width", options.width},
+                                {"height", options.height},
+                                {"pixels_compared", c.pixels_compared},
+                                {"mismatched", c.mismatched},
+                                {"mismatched_outside_band", c.mismatched_outside_band}}
+                     .dump(2)
+              << "\n";
+  } else {
+    std::printf(
+        "%s, %s, soft backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
+        "one-pixel band: %s\n",
+        scene->name.c_str(), std::string(to_string(*method)).c_str(), options.width, options.height,
+        c.pixels_compared, c.mismatched, c.mismatched_outside_band,
+        c.mismatched_outside_band == 0 ? "matches the reference" : "DIFFERS from the reference");
+  }
+  return c.mismatched_outside_band == 0 ? 0 : 1;
 }
 
 }  // namespace
@@ -195,11 +339,53 @@ int main(int argc, char** argv) {
                           "space (w = 1 point light, w = 0 directional), and count what each "
                           "generator makes");
 
+  RenderArgs render_args;
+  std::string scene_list;
+  for (std::string_view n : builtin_scene_names())
+    scene_list += (scene_list.empty() ? "" : ", ") + std::string(n);
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "Render a scene with exact shadows to a PNG (software rasterizer)");
+  render_cmd
+      ->add_option("--scene", render_args.scene,
+                   "A built-in scene (" + scene_list + ") or a mesh file")
+      ->capture_default_str();
+  render_cmd->add_option("--method", render_args.method, "zpass, zfail or auto (per object)")
+      ->capture_default_str();
+  render_cmd
+      ->add_option("--generator", render_args.generator, "standard, robust, multiplicity or auto")
+      ->capture_default_str();
+  render_cmd->add_option("--size", render_args.size, "Image size WIDTHxHEIGHT")
+      ->capture_default_str();
+  render_cmd->add_option("--out", render_args.out, "PNG file to write")->capture_default_str();
+  render_cmd->add_flag("--stats", render_args.stats, "Print the frame's timings and counters");
+  render_cmd->add_option("--frames", render_args.frames, "Render this many frames (timing)")
+      ->capture_default_str();
+
+  VerifyArgs verify_args;
+  CLI::App* verify_cmd = app.add_subcommand(
+      "verify", "Render a scene and compare its shadows per pixel with the ray-traced reference");
+  verify_cmd
+      ->add_option("--scene", verify_args.scene,
+                   "A built-in scene (" + scene_list + ") or a mesh file")
+      ->capture_default_str();
+  verify_cmd->add_option("--method", verify_args.method, "zpass, zfail or auto")
+      ->capture_default_str();
+  verify_cmd
+      ->add_option("--generator", verify_args.generator, "standard, robust, multiplicity or auto")
+      ->capture_default_str();
+  verify_cmd->add_option("--size", verify_args.size, "Image size WIDTHxHEIGHT")
+      ->capture_default_str();
+  verify_cmd->add_option("--diff", verify_args.diff,
+                         "Write the mismatches over the scene to this PNG");
+  verify_cmd->add_flag("--json", verify_args.json, "Print one JSON object");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (render_cmd->parsed()) return render(render_args);
+  if (verify_cmd->parsed()) return verify(verify_args);
   if (inspect_cmd->parsed()) {
     if (!std::isfinite(weld) || weld < 0.0f)
       return fail("--weld: " + std::to_string(weld) + " is not a distance (a finite number >= 0)");

@@ -69,7 +69,8 @@ inline CapWeights cap_weights(const Topology& topo, bool standard, bool point_li
 
 Expected<void> check_light(const glm::vec4& light) {
   for (int i = 0; i < 4; ++i)
-    if (!std::isfinite(light[i])) return make_error("the light has a coordinate that is not finite");
+    if (!std::isfinite(light[i]))
+      return make_error("the light has a coordinate that is not finite");
   if (light.w != 0.0f && light.w != 1.0f)
     return make_error("the light's w is " + std::to_string(light.w) +
                       ": use 1 for a point light (x, y, z is its position) or 0 for a "

@@ -24,10 +24,10 @@ struct LoadedMesh {
 
 // Loads every triangle of every mesh instance in the file's node hierarchy, each transformed by
 // the product of its node's transforms (so instanced meshes appear once per instance), into one
-// Mesh in the file's root space as assimp presents it (assimp turns Z-up COLLADA files to Y up). Points and lines are counted and left out with a warning.
-// Errors (each names the file): missing or unreadable file, a file assimp cannot parse, a file
-// with no triangles, and anything validate_mesh refuses (NaN/Inf coordinates, out-of-range
-// indices, sizes past the limits).
+// Mesh in the file's root space as assimp presents it (assimp turns Z-up COLLADA files to Y up).
+// Points and lines are counted and left out with a warning. Errors (each names the file): missing
+// or unreadable file, a file assimp cannot parse, a file with no triangles, and anything
+// validate_mesh refuses (NaN/Inf coordinates, out-of-range indices, sizes past the limits).
 //
 // `progress`, if set, is called now and then with a fraction in [0, 1] while the file is read
 // (as often as assimp reports, which for some formats is only at the start and the end).

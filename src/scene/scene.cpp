@@ -1,10 +1,13 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "scene/shapes.h"
@@ -36,18 +39,21 @@ glm::mat4 place(glm::vec3 at, float yaw_degrees = 0.0f, glm::vec3 scale = glm::v
 const glm::mat4 kZUp = glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0));
 
 void add_ground(Scene& s, float half_size = 7.0f) {
-  s.objects.push_back(make_object("ground", make_ground(half_size), glm::mat4(1.0f), {0.75f, 0.75f, 0.72f}));
+  s.objects.push_back(
+      make_object("ground", make_ground(half_size), glm::mat4(1.0f), {0.75f, 0.75f, 0.72f}));
 }
 
 void add_demo_objects(Scene& s) {
   add_ground(s);
-  s.objects.push_back(make_object("torus", make_bumpy_torus(96, 32, 0.9f, 0.3f),
-                                  place({-1.7f, 1.2f, 0.2f}, 20.0f) *
-                                      glm::rotate(glm::mat4(1.0f), glm::radians(70.0f), glm::vec3(1, 0, 0)),
-                                  {0.85f, 0.35f, 0.25f}));
+  s.objects.push_back(
+      make_object("torus", make_bumpy_torus(96, 32, 0.9f, 0.3f),
+                  place({-1.7f, 1.2f, 0.2f}, 20.0f) *
+                      glm::rotate(glm::mat4(1.0f), glm::radians(70.0f), glm::vec3(1, 0, 0)),
+                  {0.85f, 0.35f, 0.25f}));
   s.objects.push_back(make_object("box", make_box(glm::vec3(-0.6f), glm::vec3(0.6f)),
                                   place({1.6f, 0.6f, 0.6f}, 30.0f), {0.3f, 0.55f, 0.85f}));
-  s.objects.push_back(make_object("open_box", make_box({-0.7f, -0.7f, -0.5f}, {0.7f, 0.7f, 0.5f}, false),
+  s.objects.push_back(make_object("open_box",
+                                  make_box({-0.7f, -0.7f, -0.5f}, {0.7f, 0.7f, 0.5f}, false),
                                   place({0.2f, 0.5f, -2.2f}, -15.0f) * kZUp, {0.9f, 0.75f, 0.3f}));
 }
 
@@ -85,9 +91,9 @@ Scene light_in_view() {
                                   {0.85f, 0.35f, 0.25f}));
   for (int i = 0; i < 4; ++i) {
     const float a = glm::radians(45.0f + 90.0f * i);
-    s.objects.push_back(make_object("box" + std::to_string(i), make_box(glm::vec3(-0.35f), glm::vec3(0.35f)),
-                                    place({2.2f * std::cos(a), 0.35f, 2.2f * std::sin(a)}, 10.0f * i),
-                                    {0.3f, 0.55f, 0.85f}));
+    s.objects.push_back(make_object(
+        "box" + std::to_string(i), make_box(glm::vec3(-0.35f), glm::vec3(0.35f)),
+        place({2.2f * std::cos(a), 0.35f, 2.2f * std::sin(a)}, 10.0f * i), {0.3f, 0.55f, 0.85f}));
   }
   // The light hangs inside the torus, in view; the camera looks at it from close by.
   s.lights.push_back({{0.0f, 1.3f, 0.0f, 1.0f}, {1.0f, 0.95f, 0.85f}, 1.0f});
@@ -133,10 +139,10 @@ Mesh book() {  // four pages on one spine, with slivers and a collapsed triangle
     m.positions.insert(m.positions.end(), {a, b, c});
     m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
   };
-  for (glm::vec3 tip : {glm::vec3(0.9f, 0.1f, 0), glm::vec3(0, 0.9f, 0.2f), glm::vec3(-0.9f, 0.2f, 0),
-                        glm::vec3(0.1f, 0.6f, -0.8f)})
+  for (glm::vec3 tip : {glm::vec3(0.9f, 0.1f, 0), glm::vec3(0, 0.9f, 0.2f),
+                        glm::vec3(-0.9f, 0.2f, 0), glm::vec3(0.1f, 0.6f, -0.8f)})
     add({0, 0, -0.6f}, {0, 0, 0.6f}, tip);
-  add({0, 0, -0.6f}, {0, 0, 0}, {0, 0, 0.6f});  // zero area on the spine
+  add({0, 0, -0.6f}, {0, 0, 0}, {0, 0, 0.6f});             // zero area on the spine
   add({0.5f, 0.5f, 0}, {0.5f, 0.5f, 0}, {0, 0.9f, 0.2f});  // collapsed
   return m;
 }
@@ -145,13 +151,18 @@ Scene nonmanifold() {
   Scene s;
   s.name = "nonmanifold";
   add_ground(s);
-  s.objects.push_back(make_object("fin_box", fin_box(), place({-2.0f, 0.6f, 0.0f}, 25.0f), {0.85f, 0.35f, 0.25f}));
-  s.objects.push_back(make_object("flipped_box", flipped_box(), place({0.0f, 0.6f, 0.8f}, -20.0f), {0.3f, 0.55f, 0.85f}));
-  s.objects.push_back(make_object("coincident_box", coincident_box(), place({2.0f, 0.6f, 0.0f}, 40.0f), {0.4f, 0.75f, 0.4f}));
-  s.objects.push_back(make_object("book", book(), place({0.2f, 1.4f, -2.0f}, 30.0f, glm::vec3(1.5f)), {0.9f, 0.75f, 0.3f}));
-  s.objects.push_back(make_object("open_box", make_box({-0.6f, -0.6f, -0.4f}, {0.6f, 0.6f, 0.4f}, false),
-                                  place({-1.0f, 1.6f, -1.2f}, 10.0f) * glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(1, 0, 1)),
-                                  {0.7f, 0.4f, 0.8f}));
+  s.objects.push_back(
+      make_object("fin_box", fin_box(), place({-2.0f, 0.6f, 0.0f}, 25.0f), {0.85f, 0.35f, 0.25f}));
+  s.objects.push_back(make_object("flipped_box", flipped_box(), place({0.0f, 0.6f, 0.8f}, -20.0f),
+                                  {0.3f, 0.55f, 0.85f}));
+  s.objects.push_back(make_object("coincident_box", coincident_box(),
+                                  place({2.0f, 0.6f, 0.0f}, 40.0f), {0.4f, 0.75f, 0.4f}));
+  s.objects.push_back(make_object(
+      "book", book(), place({0.2f, 1.4f, -2.0f}, 30.0f, glm::vec3(1.5f)), {0.9f, 0.75f, 0.3f}));
+  s.objects.push_back(make_object(
+      "open_box", make_box({-0.6f, -0.6f, -0.4f}, {0.6f, 0.6f, 0.4f}, false),
+      place({-1.0f, 1.6f, -1.2f}, 10.0f) * glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(1, 0, 1)),
+      {0.7f, 0.4f, 0.8f}));
   s.lights.push_back({{3.0f, 6.5f, 4.0f, 1.0f}, {1.0f, 0.97f, 0.9f}, 1.0f});
   s.camera = {{0.0f, 4.0f, 8.0f}, {0.0f, 0.6f, -0.5f}};
   return s;
@@ -168,6 +179,24 @@ constexpr Builtin kBuiltins[] = {{"demo", demo},
                                  {"nonmanifold", nonmanifold}};
 
 }  // namespace
+
+Scene default_stage(std::string name, Mesh mesh) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 centre = (lo + hi) * 0.5f;
+  const float size = std::max(glm::length(hi - lo), 1e-6f);
+  Scene s;
+  s.name = name;
+  s.objects.push_back(
+      make_object(std::move(name), std::move(mesh), glm::mat4(1.0f), {0.8f, 0.55f, 0.35f}));
+  const glm::vec3 floor(centre.x, lo.y - 0.001f * size, centre.z);
+  s.objects.push_back(make_object("ground", make_ground(2.0f * size),
+                                  glm::translate(glm::mat4(1.0f), floor), {0.75f, 0.75f, 0.72f}));
+  s.lights.push_back(
+      {glm::vec4(centre + glm::vec3(0.6f, 1.4f, 0.8f) * size, 1.0f), {1, 0.97f, 0.9f}, 1.0f});
+  s.camera = {centre + glm::vec3(0.0f, 0.7f, 1.6f) * size, centre, {0, 1, 0}, 45.0f, 0.01f * size};
+  return s;
+}
 
 std::vector<std::string_view> builtin_scene_names() {
   std::vector<std::string_view> names;

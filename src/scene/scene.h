@@ -71,4 +71,8 @@ SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
 Expected<Scene> builtin_scene(std::string_view name);
 std::vector<std::string_view> builtin_scene_names();
 
+// A stage for a bare mesh: the mesh (named `name`), a ground plane just under its bounds, a
+// point light above one side, and a camera framing it.
+Scene default_stage(std::string name, Mesh mesh);
+
 }  // namespace shadowvol

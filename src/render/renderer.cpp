@@ -1,0 +1,262 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+namespace shadowvol {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Clip-space triangles of an object's mesh, 3 vertices each, in face order.
+void clip_triangles(const SceneObject& o, const glm::mat4& view_proj, std::vector<glm::vec4>& out) {
+  const glm::mat4 mvp = view_proj * o.transform;
+  out.clear();
+  out.reserve(o.mesh->indices.size());
+  for (std::uint32_t i : o.mesh->indices)
+    out.push_back(mvp * glm::vec4(o.mesh->positions[i], 1.0f));
+}
+
+// Clip-space triangles of a primitive list (quads split by kQuadTriangles) and their weights.
+void clip_volume(const PrimitiveList& list, int corners, const glm::mat4& mvp, int sign,
+                 std::vector<glm::vec4>& tris, std::vector<std::int32_t>& weights) {
+  const int per = corners == kQuadCorners ? 2 : 1;
+  for (std::size_t p = 0; p < list.size(); ++p) {
+    const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
+    for (int t = 0; t < per; ++t) {
+      for (int k = 0; k < 3; ++k) tris.push_back(mvp * v[kQuadTriangles[3 * t + k]]);
+      weights.push_back(sign * list.weights[p]);
+    }
+  }
+}
+
+// May any point of the near-plane rectangle lie in the shadow of something inside the sphere?
+// The points whose segment to the light meets the sphere form a cone (a cylinder for a
+// directional light); its intersection with the near rectangle is non-empty iff the sphere
+// meets the convex hull of the rectangle and the light (rectangle swept towards the light).
+// Tested plane by plane against that hull: conservative (may say yes when the answer is no).
+bool may_shadow_near_plane(const glm::vec3& centre, float radius,
+                           const std::array<glm::vec3, 4>& rect, const glm::vec4& light) {
+  const glm::vec3 inside = (rect[0] + rect[1] + rect[2] + rect[3]) * 0.25f;
+  const bool point = light.w != 0.0f;
+  const glm::vec3 l = glm::vec3(light) / (point ? light.w : 1.0f);
+  auto outside = [&](glm::vec3 n, glm::vec3 on, glm::vec3 reference) {
+    const float len = glm::length(n);
+    if (len < 1e-12f) return false;  // degenerate plane: no verdict
+    n /= len;
+    if (glm::dot(n, reference - on) > 0.0f) n = -n;  // outward: away from the reference point
+    return glm::dot(n, centre - on) > radius;
+  };
+  // The rectangle's plane bounds the hull on the side away from the light.
+  const glm::vec3 rect_normal = glm::cross(rect[1] - rect[0], rect[3] - rect[0]);
+  const glm::vec3 towards = point ? l - inside : l;
+  if (glm::dot(rect_normal, towards) == 0.0f) return true;  // light in the near plane
+  if (outside(rect_normal, rect[0], rect[0] + towards)) return false;
+  for (int i = 0; i < 4; ++i) {
+    const glm::vec3 a = rect[i], b = rect[(i + 1) % 4];
+    const glm::vec3 n = glm::cross(b - a, point ? l - a : l);
+    if (outside(n, a, inside + towards * 1e-3f)) return false;
+  }
+  return true;
+}
+
+glm::vec3 to_srgb(glm::vec3 linear) {
+  for (int i = 0; i < 3; ++i) {
+    const float c = std::clamp(linear[i], 0.0f, 1.0f);
+    linear[i] = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  }
+  return linear;
+}
+
+}  // namespace
+
+std::string_view to_string(Method method) {
+  switch (method) {
+    case Method::zpass:
+      return "zpass";
+    case Method::zfail:
+      return "zfail";
+    case Method::automatic:
+      return "auto";
+  }
+  return "unknown";
+}
+
+Expected<Method> parse_method(std::string_view name) {
+  for (Method m : {Method::zpass, Method::zfail, Method::automatic})
+    if (name == to_string(m)) return m;
+  return make_error("unknown method '" + std::string(name) + "': expected zpass, zfail or auto");
+}
+
+Expected<void> check_options(const RenderOptions& options) {
+  if (options.width < 1 || options.height < 1 || options.width > soft::kMaxViewport ||
+      options.height > soft::kMaxViewport)
+    return make_error("image size " + std::to_string(options.width) + "x" +
+                      std::to_string(options.height) + " is outside 1x1 .. " +
+                      std::to_string(soft::kMaxViewport) + "x" +
+                      std::to_string(soft::kMaxViewport));
+  return {};
+}
+
+Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
+  assert(check_options(options).ok());
+  const int w = options.width, h = options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  if (target_.width != w || target_.height != h) target_ = soft::Target(w, h);
+  Frame frame;
+  FrameStats& stats = frame.stats;
+  const glm::mat4 view = scene.camera.view();
+  const glm::mat4 proj = scene.camera.projection(static_cast<float>(w) / static_cast<float>(h));
+  const glm::mat4 view_proj = proj * view;
+
+  // --- depth pass: ids are (first face id of the object) + face ---
+  auto start = Clock::now();
+  target_.clear_depth();
+  std::vector<std::uint32_t> first_id(scene.objects.size() + 1, 0);
+  std::vector<glm::vec4> tris;
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    const SceneObject& object = scene.objects[o];
+    first_id[o + 1] = first_id[o] + static_cast<std::uint32_t>(object.mesh->triangle_count());
+    clip_triangles(object, view_proj, tris);
+    soft::draw_depth(target_, tris, first_id[o], stats.depth);
+    stats.triangles += object.mesh->triangle_count();
+  }
+  target_.update_tile_depth();
+  frame.object.assign(pixels, -1);
+  frame.face.assign(pixels, 0);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    const std::uint32_t id = target_.id[p];
+    if (id == soft::Target::kNoId) continue;
+    const auto o = static_cast<std::size_t>(std::upper_bound(first_id.begin(), first_id.end(), id) -
+                                            first_id.begin() - 1);
+    frame.object[p] = static_cast<std::int32_t>(o);
+    frame.face[p] = id - first_id[o];
+  }
+  stats.ms_depth = ms_since(start);
+
+  // The near-plane rectangle in world space, for the per-object choice of method.
+  const glm::mat4 inv_view_proj = glm::inverse(view_proj);
+  std::array<glm::vec3, 4> near_rect;
+  for (int i = 0; i < 4; ++i) {
+    const glm::vec4 c =
+        inv_view_proj * glm::vec4(i == 1 || i == 2 ? 1 : -1, i >= 2 ? 1 : -1, -1, 1);
+    near_rect[i] = glm::vec3(c) / c.w;
+  }
+
+  // --- per light: volumes, counts ---
+  frame.shadowed.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
+  volumes_.resize(scene.objects.size());
+  for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+    const glm::vec4 light = scene.lights[l].position;
+    start = Clock::now();
+    std::vector<VolumeJob> jobs(scene.objects.size());
+    std::vector<bool> zfail(scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+      const SceneObject& object = scene.objects[o];
+      if (options.method == Method::automatic) {
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const glm::vec3& p : object.topology->positions) {
+          const glm::vec3 q = glm::vec3(object.transform * glm::vec4(p, 1.0f));
+          lo = glm::min(lo, q);
+          hi = glm::max(hi, q);
+        }
+        zfail[o] =
+            may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect, light);
+      } else {
+        zfail[o] = options.method == Method::zfail;
+      }
+      (zfail[o] ? stats.objects_zfail : stats.objects_zpass) += 1;
+      jobs[o] = {object.topology.get(),
+                 glm::inverse(object.transform) * light,
+                 {options.generator, static_cast<bool>(zfail[o])},
+                 &volumes_[o]};
+    }
+    builder_.build(jobs);
+    stats.ms_volumes += ms_since(start);
+
+    start = Clock::now();
+    target_.clear_count();
+    std::vector<std::int32_t> weights;
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+      const SceneObject& object = scene.objects[o];
+      const VolumeBuffer& v = volumes_[o];
+      stats.volume_primitives += v.primitive_count();
+      const glm::mat4 mvp = view_proj * object.transform;
+      // A mirroring transform reverses every primitive's winding: negate the weights.
+      const int sign = glm::determinant(glm::mat3(object.transform)) < 0.0f ? -1 : 1;
+      tris.clear();
+      weights.clear();
+      clip_volume(v.sides, kQuadCorners, mvp, sign, tris, weights);
+      if (zfail[o]) {
+        clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris, weights);
+        clip_volume(v.dark_caps, kTriangleCorners, mvp, sign, tris, weights);
+      }
+      soft::draw_counts(target_, tris, weights,
+                        zfail[o] ? soft::CountRule::zfail : soft::CountRule::zpass, stats.counts);
+    }
+    for (std::size_t p = 0; p < pixels; ++p) frame.shadowed[l][p] = target_.count[p] != 0;
+    stats.ms_counts += ms_since(start);
+  }
+
+  // --- shading: ambient everywhere, each light where it is not shadowed ---
+  start = Clock::now();
+  frame.image = {w, h, std::vector<std::uint8_t>(pixels * 4)};
+  const glm::dmat4 inv_vp(inv_view_proj);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * w + x;
+      glm::vec3 color(0.16f + 0.10f * (1.0f - float(y) / h), 0.18f + 0.1f * (1.0f - float(y) / h),
+                      0.22f);
+      if (frame.object[p] >= 0) {
+        const SceneObject& object = scene.objects[static_cast<std::size_t>(frame.object[p])];
+        const std::uint32_t* f = &object.mesh->indices[3 * frame.face[p]];
+        const glm::vec3 a =
+            glm::vec3(object.transform * glm::vec4(object.mesh->positions[f[0]], 1));
+        const glm::vec3 b =
+            glm::vec3(object.transform * glm::vec4(object.mesh->positions[f[1]], 1));
+        const glm::vec3 c =
+            glm::vec3(object.transform * glm::vec4(object.mesh->positions[f[2]], 1));
+        glm::vec3 n = glm::cross(b - a, c - a);
+        const float len = glm::length(n);
+        n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+        const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0,
+                             double(target_.depth[p]) * 2.0 - 1.0, 1.0);
+        const glm::dvec4 world = inv_vp * ndc;
+        const glm::vec3 pos = glm::vec3(glm::dvec3(world) / world.w);
+        const glm::vec3 to_eye = glm::normalize(scene.camera.position - pos);
+        if (glm::dot(n, to_eye) < 0.0f) n = -n;  // two-sided: light the side we see
+        const glm::vec3 albedo = object.material.color;
+        color = scene.ambient * albedo;
+        for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+          if (frame.shadowed[l][p]) continue;
+          const SceneLight& light = scene.lights[l];
+          const glm::vec3 to_light = glm::normalize(
+              light.position.w != 0.0f ? glm::vec3(light.position) / light.position.w - pos
+                                       : glm::vec3(light.position));
+          const float lambert = glm::dot(n, to_light);
+          if (lambert <= 0.0f) continue;
+          const float spec =
+              std::pow(std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))), 48.0f);
+          color += light.color * light.intensity * (albedo * lambert + glm::vec3(0.25f * spec));
+        }
+      }
+      const glm::vec3 s = to_srgb(color);
+      for (int k = 0; k < 3; ++k)
+        frame.image.rgba[4 * p + k] = static_cast<std::uint8_t>(std::lround(s[k] * 255.0f));
+      frame.image.rgba[4 * p + 3] = 255;
+    }
+  stats.ms_shade = ms_since(start);
+  return frame;
+}
+
+}  // namespace shadowvol

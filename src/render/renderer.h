@@ -1,0 +1,75 @@
+// shadowvol render: Renderer, one frame of a scene on the software rasterizer.
+//
+// Owns: pass orchestration (depth, then per light: volumes -> counts -> lit where the count is
+// 0), the per-object choice of z-pass or z-fail, the shading, and FrameStats. Writes no files.
+// Papers: Intel "mainstream shadow volumes" and GPU Gems 3 ch. 11 (z-pass / z-fail, caps,
+// extrusion to infinity with depth clamp, per-object choice of the method).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/expected.h"
+#include "core/volume.h"
+#include "render/volume_builder.h"
+#include "scene/scene.h"
+#include "soft/raster.h"
+
+namespace shadowvol {
+
+enum class Method : std::uint8_t {
+  zpass,      // count volume faces in front of the surface; wrong when the eye is in a volume
+  zfail,      // count those behind it (needs caps); right everywhere
+  automatic,  // per object: z-pass unless its volume may reach the near plane (GPU Gems 3 §11.2.3)
+};
+std::string_view to_string(Method method);
+Expected<Method> parse_method(std::string_view name);
+
+struct RenderOptions {
+  int width = 960;
+  int height = 540;
+  Method method = Method::automatic;
+  Generator generator = Generator::automatic;
+};
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // 8-bit sRGB, row 0 at the top
+};
+
+struct FrameStats {
+  double ms_depth = 0, ms_volumes = 0, ms_counts = 0, ms_shade = 0;
+  std::size_t triangles = 0;                 // scene triangles drawn in the depth pass
+  std::size_t volume_primitives = 0;         // over all lights
+  int objects_zpass = 0, objects_zfail = 0;  // over all lights
+  soft::Counters depth, counts;
+};
+
+// What a frame leaves behind besides the picture: what each pixel shows, and per light whether
+// it is lit. The verifier compares these against the ray-traced reference.
+struct Frame {
+  Image image;
+  std::vector<std::int32_t> object;  // per pixel: index into scene.objects, -1 for background
+  std::vector<std::uint32_t> face;   // per pixel: face of that object
+  std::vector<std::vector<std::uint8_t>> shadowed;  // per light, per pixel: count != 0
+  FrameStats stats;
+};
+
+// Checks an options struct a person filled in: size within the rasterizer's limits.
+Expected<void> check_options(const RenderOptions& options);
+
+class Renderer {
+ public:
+  // Renders one frame. The scene's lights must pass check_light and the options check_options
+  // (asserted). Volumes are rebuilt every frame.
+  Frame render(const Scene& scene, const RenderOptions& options);
+
+ private:
+  VolumeBuilder builder_;
+  std::vector<VolumeBuffer> volumes_;
+  soft::Target target_;
+};
+
+}  // namespace shadowvol

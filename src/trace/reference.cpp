@@ -1,0 +1,135 @@
+#include "trace/reference.h"
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+namespace shadowvol {
+namespace {
+
+struct DeviceDeleter {
+  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+};
+struct SceneDeleter {
+  void operator()(RTCScene s) const { rtcReleaseScene(s); }
+};
+using Device = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
+using EmbreeScene = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+
+std::string device_error(RTCDevice device) {
+  const RTCError e = rtcGetDeviceError(device);
+  return e == RTC_ERROR_NONE ? "" : "Embree error " + std::to_string(static_cast<int>(e));
+}
+
+// World-space triangles of the scene, one Embree geometry per object (geometry id = index).
+Expected<EmbreeScene> build(RTCDevice device, const Scene& scene) {
+  EmbreeScene es(rtcNewScene(device));
+  rtcSetSceneFlags(es.get(), RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(es.get(), RTC_BUILD_QUALITY_HIGH);
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    const SceneObject& object = scene.objects[o];
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                          object.mesh->positions.size()));
+    auto* i = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0,
+                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                             object.mesh->triangle_count()));
+    if (v == nullptr || i == nullptr) {
+      rtcReleaseGeometry(g);
+      return make_error("Embree could not allocate the buffers of object '" + object.name + "'");
+    }
+    for (std::size_t k = 0; k < object.mesh->positions.size(); ++k) {
+      const glm::vec3 p = glm::vec3(object.transform * glm::vec4(object.mesh->positions[k], 1.0f));
+      v[3 * k] = p.x, v[3 * k + 1] = p.y, v[3 * k + 2] = p.z;
+    }
+    for (std::size_t k = 0; k < object.mesh->indices.size(); ++k) i[k] = object.mesh->indices[k];
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(es.get(), g, static_cast<unsigned>(o));
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(es.get());
+  if (std::string e = device_error(device); !e.empty())
+    return make_error(e + " while building the scene");
+  return es;
+}
+
+}  // namespace
+
+Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int height) {
+  Device device(rtcNewDevice(nullptr));
+  if (!device) return make_error("cannot create an Embree device (is libembree3 installed?)");
+  auto built = build(device.get(), scene);
+  if (!built) return built.error();
+  RTCScene es = built->get();
+
+  ReferenceFrame ref;
+  ref.width = width, ref.height = height;
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  ref.object.assign(pixels, -1);
+  ref.face.assign(pixels, 0);
+  ref.faces_light.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
+  ref.shadowed.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
+
+  // Rays through the pixel centres the rasterizer samples: NDC ((x + 0.5) / w * 2 - 1, ...).
+  const glm::dmat4 inv_vp =
+      glm::inverse(glm::dmat4(scene.camera.projection(float(width) / float(height))) *
+                   glm::dmat4(scene.camera.view()));
+  const glm::dvec3 eye(scene.camera.position);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * width + x;
+      const glm::dvec4 far = inv_vp * glm::dvec4((x + 0.5) / width * 2.0 - 1.0,
+                                                 1.0 - (y + 0.5) / height * 2.0, 0.0, 1.0);
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(far) / far.w - eye);
+      RTCRayHit hit{};
+      hit.ray.org_x = float(eye.x), hit.ray.org_y = float(eye.y), hit.ray.org_z = float(eye.z);
+      hit.ray.dir_x = float(dir.x), hit.ray.dir_y = float(dir.y), hit.ray.dir_z = float(dir.z);
+      hit.ray.tnear = scene.camera.near;
+      hit.ray.tfar = std::numeric_limits<float>::infinity();
+      hit.ray.mask = 0xffffffffu;
+      hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(es, &context, &hit);
+      if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      ref.object[p] = static_cast<std::int32_t>(hit.hit.geomID);
+      ref.face[p] = hit.hit.primID;
+      const glm::dvec3 pos = eye + dir * double(hit.ray.tfar);
+      glm::dvec3 n = glm::normalize(glm::dvec3(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z));
+      if (glm::dot(n, dir) > 0.0) n = -n;  // the side the eye sees
+      for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+        const glm::dvec4 light(scene.lights[l].position);
+        const glm::dvec3 to_light =
+            light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
+        const double distance =
+            light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
+        const glm::dvec3 d = glm::normalize(to_light);
+        if (glm::dot(n, d) <= 0.0) continue;  // faces away: not compared
+        ref.faces_light[l][p] = 1;
+        // Start a hair off the surface, towards the light's side, to leave its own triangle.
+        const double scale = std::max(1.0, glm::length(pos));
+        const glm::dvec3 origin = pos + n * (1e-5 * scale);
+        RTCRay shadow{};
+        shadow.org_x = float(origin.x), shadow.org_y = float(origin.y),
+        shadow.org_z = float(origin.z);
+        shadow.dir_x = float(d.x), shadow.dir_y = float(d.y), shadow.dir_z = float(d.z);
+        shadow.tnear = 0.0f;
+        shadow.tfar =
+            std::isinf(distance) ? std::numeric_limits<float>::infinity() : float(distance);
+        shadow.mask = 0xffffffffu;
+        rtcOccluded1(es, &context, &shadow);
+        ref.shadowed[l][p] = shadow.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+      }
+    }
+  if (std::string e = device_error(device.get()); !e.empty())
+    return make_error(e + " while tracing");
+  return ref;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,32 @@
+// shadowvol verify: a rendered frame against the ray-traced reference, per pixel.
+//
+// Owns: the comparison that DESIGN.md's invariant is stated in. On every pixel whose surface
+// faces the light (in the reference), the rendered shadow mask must equal the reference's,
+// except within one pixel of a shadow or silhouette boundary of the reference.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "render/renderer.h"
+#include "trace/reference.h"
+
+namespace shadowvol {
+
+struct Comparison {
+  std::size_t pixels_compared = 0;          // over all lights
+  std::size_t mismatched = 0;               // different mask, or a different surface seen
+  std::size_t mismatched_outside_band = 0;  // of those, more than a pixel from any boundary
+  // Per pixel, the worst over the lights: 0 agrees or not compared, 1 mismatch within the
+  // band, 2 mismatch outside it.
+  std::vector<std::uint8_t> verdict;
+};
+
+// Frame and reference must have the same size and the same lights.
+Comparison compare(const Frame& frame, const ReferenceFrame& reference);
+
+// The rendered image, greyed, with mismatches outside the band in red and inside it in yellow.
+Image diff_image(const Frame& frame, const Comparison& comparison);
+
+}  // namespace shadowvol
