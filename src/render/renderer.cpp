@@ -8,6 +8,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
 #include <glm/matrix.hpp>
 
 namespace shadowvol {
@@ -211,28 +212,31 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
   // --- shading: ambient everywhere, each light where it is not shadowed ---
   start = Clock::now();
   frame.image = {w, h, std::vector<std::uint8_t>(pixels * 4)};
+  std::vector<std::vector<glm::vec3>> world(scene.objects.size());  // vertices, once per frame
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    const SceneObject& object = scene.objects[o];
+    world[o].reserve(object.mesh->positions.size());
+    for (const glm::vec3& p : object.mesh->positions)
+      world[o].push_back(glm::vec3(object.transform * glm::vec4(p, 1.0f)));
+  }
   const glm::dmat4 inv_vp(inv_view_proj);
-  for (int y = 0; y < h; ++y)
+  tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * w + x;
-      glm::vec3 color(0.16f + 0.10f * (1.0f - float(y) / h), 0.18f + 0.1f * (1.0f - float(y) / h),
-                      0.22f);
+      const float fade = 1.0f - float(y) / float(h);
+      glm::vec3 color(0.16f + 0.10f * fade, 0.18f + 0.10f * fade, 0.22f);  // background
       if (frame.object[p] >= 0) {
-        const SceneObject& object = scene.objects[static_cast<std::size_t>(frame.object[p])];
-        const std::uint32_t* f = &object.mesh->indices[3 * frame.face[p]];
-        const glm::vec3 a =
-            glm::vec3(object.transform * glm::vec4(object.mesh->positions[f[0]], 1));
-        const glm::vec3 b =
-            glm::vec3(object.transform * glm::vec4(object.mesh->positions[f[1]], 1));
-        const glm::vec3 c =
-            glm::vec3(object.transform * glm::vec4(object.mesh->positions[f[2]], 1));
-        glm::vec3 n = glm::cross(b - a, c - a);
+        const auto o = static_cast<std::size_t>(frame.object[p]);
+        const SceneObject& object = scene.objects[o];
+        const std::uint32_t* f = &object.mesh->indices[3 * static_cast<std::size_t>(frame.face[p])];
+        const glm::vec3& a = world[o][f[0]];
+        glm::vec3 n = glm::cross(world[o][f[1]] - a, world[o][f[2]] - a);
         const float len = glm::length(n);
         n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
         const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0,
                              double(target_.depth[p]) * 2.0 - 1.0, 1.0);
-        const glm::dvec4 world = inv_vp * ndc;
-        const glm::vec3 pos = glm::vec3(glm::dvec3(world) / world.w);
+        const glm::dvec4 at = inv_vp * ndc;
+        const glm::vec3 pos = glm::vec3(glm::dvec3(at) / at.w);
         const glm::vec3 to_eye = glm::normalize(scene.camera.position - pos);
         if (glm::dot(n, to_eye) < 0.0f) n = -n;  // two-sided: light the side we see
         const glm::vec3 albedo = object.material.color;
@@ -250,11 +254,12 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
           color += light.color * light.intensity * (albedo * lambert + glm::vec3(0.25f * spec));
         }
       }
-      const glm::vec3 s = to_srgb(color);
+      const glm::vec3 srgb = to_srgb(color);
       for (int k = 0; k < 3; ++k)
-        frame.image.rgba[4 * p + k] = static_cast<std::uint8_t>(std::lround(s[k] * 255.0f));
+        frame.image.rgba[4 * p + k] = static_cast<std::uint8_t>(std::lround(srgb[k] * 255.0f));
       frame.image.rgba[4 * p + 3] = 255;
     }
+  });
   stats.ms_shade = ms_since(start);
   return frame;
 }

@@ -7,6 +7,8 @@
 #include <cassert>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 namespace shadowvol::soft {
 
 Target::Target(int w, int h)
@@ -180,50 +182,58 @@ inline float depth_at(const Setup& s, int px, int py) {
 
 // --- raster -------------------------------------------------------------------------------
 
-// Calls fragment(pixel_index, depth) for every covered pixel of tile (tx, ty), after tile_test
-// (the tile's [zmin, zmax] of the triangle) said the tile may hold work.
+// The edge functions at a pixel centre, plus their fill-rule bias: >= 0 inside.
+inline std::int64_t edge_at(const Setup& s, int i, int px, int py) {
+  const std::int64_t cx = (std::int64_t{px} << kSubpixelBits) + kSubpixels / 2;
+  const std::int64_t cy = (std::int64_t{py} << kSubpixelBits) + kSubpixels / 2;
+  return s.dx[i] * (cy - s.v[i].y) - s.dy[i] * (cx - s.v[i].x) + s.bias[i];
+}
+
+// Calls fragment(pixel_index, depth) for every covered pixel in tile rows [band_begin,
+// band_end), tile by tile. Per tile, first the edge test (edge functions are linear, so the
+// four corner pixel centres tell whether any pixel centre of the tile can be inside, and whether
+// all are), then tile_test(hi-z bounds, the triangle's depth range over the tile).
 template <class TileTest, class Fragment>
-void raster(const Target& target, const Setup& s, Counters& counters, TileTest&& tile_test,
-            Fragment&& fragment) {
-  const int px0 =
-      static_cast<int>(std::max<std::int64_t>(0, (s.min_x - kSubpixels / 2) >> kSubpixelBits));
-  const int py0 =
-      static_cast<int>(std::max<std::int64_t>(0, (s.min_y - kSubpixels / 2) >> kSubpixelBits));
-  const int px1 = static_cast<int>(
-      std::min<std::int64_t>(target.width - 1, (s.max_x - kSubpixels / 2) >> kSubpixelBits));
-  const int py1 = static_cast<int>(
-      std::min<std::int64_t>(target.height - 1, (s.max_y - kSubpixels / 2) >> kSubpixelBits));
+void raster(const Target& target, const Setup& s, int band_begin, int band_end, Counters& counters,
+            TileTest&& tile_test, Fragment&& fragment) {
+  const auto pixel_of = [](std::int64_t sub) { return (sub - kSubpixels / 2) >> kSubpixelBits; };
+  const int px0 = static_cast<int>(std::max<std::int64_t>(0, pixel_of(s.min_x)));
+  const int px1 = static_cast<int>(std::min<std::int64_t>(target.width - 1, pixel_of(s.max_x) + 1));
+  const int py0 = static_cast<int>(
+      std::max<std::int64_t>({0, pixel_of(s.min_y), std::int64_t{band_begin} * kTileSize}));
+  const int py1 = static_cast<int>(std::min<std::int64_t>(
+      {target.height - 1, pixel_of(s.max_y) + 1, std::int64_t{band_end} * kTileSize - 1}));
   if (px0 > px1 || py0 > py1) return;
+  const float zlo_triangle = std::min({s.v[0].z, s.v[1].z, s.v[2].z});
+  const float zhi_triangle = std::max({s.v[0].z, s.v[1].z, s.v[2].z});
   for (int ty = py0 / kTileSize; ty <= py1 / kTileSize; ++ty)
     for (int tx = px0 / kTileSize; tx <= px1 / kTileSize; ++tx) {
+      const int x0 = std::max(px0, tx * kTileSize), x1 = std::min(px1, tx * kTileSize + kTileSize - 1);
+      const int y0 = std::max(py0, ty * kTileSize), y1 = std::min(py1, ty * kTileSize + kTileSize - 1);
+      bool outside = false, covers_all = true;
+      for (int i = 0; i < 3 && !outside; ++i) {
+        const std::int64_t e[4] = {edge_at(s, i, x0, y0), edge_at(s, i, x1, y0),
+                                   edge_at(s, i, x0, y1), edge_at(s, i, x1, y1)};
+        outside = e[0] < 0 && e[1] < 0 && e[2] < 0 && e[3] < 0;
+        covers_all &= e[0] >= 0 && e[1] >= 0 && e[2] >= 0 && e[3] >= 0;
+      }
+      if (outside) continue;
       ++counters.tiles_touched;
-      const int x0 = std::max(px0, tx * kTileSize),
-                x1 = std::min(px1, tx * kTileSize + kTileSize - 1);
-      const int y0 = std::max(py0, ty * kTileSize),
-                y1 = std::min(py1, ty * kTileSize + kTileSize - 1);
-      // The triangle's depth over the tile, bounded by its plane at the tile's corner pixels and
-      // by its own vertex depths.
-      float zlo = std::min({s.v[0].z, s.v[1].z, s.v[2].z});
-      float zhi = std::max({s.v[0].z, s.v[1].z, s.v[2].z});
+      // The triangle's depth over the tile: its plane at the corner pixels, within its own range.
       const float c[4] = {depth_at(s, x0, y0), depth_at(s, x1, y0), depth_at(s, x0, y1),
                           depth_at(s, x1, y1)};
-      zlo = std::max(zlo, std::min({c[0], c[1], c[2], c[3]}));
-      zhi = std::min(zhi, std::max({c[0], c[1], c[2], c[3]}));
-      if (!tile_test(target.tile_depth[static_cast<std::size_t>(ty) * target.tiles_x + tx], zlo,
-                     zhi)) {
+      const float zlo = std::max(zlo_triangle, std::min({c[0], c[1], c[2], c[3]}));
+      const float zhi = std::min(zhi_triangle, std::max({c[0], c[1], c[2], c[3]}));
+      if (!tile_test(target.tile_depth[static_cast<std::size_t>(ty) * target.tiles_x + tx], zlo, zhi)) {
         ++counters.tiles_skipped;
         continue;
       }
       for (int py = y0; py <= y1; ++py) {
-        const std::int64_t cy = (std::int64_t{py} << kSubpixelBits) + kSubpixels / 2;
-        for (int px = x0; px <= x1; ++px) {
-          const std::int64_t cx = (std::int64_t{px} << kSubpixelBits) + kSubpixels / 2;
-          bool inside = true;
-          for (int i = 0; i < 3; ++i) {
-            const std::int64_t e = s.dx[i] * (cy - s.v[i].y) - s.dy[i] * (cx - s.v[i].x);
-            inside &= e + s.bias[i] >= 0;
-          }
-          if (!inside) continue;
+        std::int64_t e0 = edge_at(s, 0, x0, py), e1 = edge_at(s, 1, x0, py), e2 = edge_at(s, 2, x0, py);
+        const std::int64_t step0 = -s.dy[0] * kSubpixels, step1 = -s.dy[1] * kSubpixels,
+                           step2 = -s.dy[2] * kSubpixels;
+        for (int px = x0; px <= x1; ++px, e0 += step0, e1 += step1, e2 += step2) {
+          if (!covers_all && (e0 < 0 || e1 < 0 || e2 < 0)) continue;
           ++counters.pixels_processed;
           fragment(static_cast<std::size_t>(py) * target.width + px, depth_at(s, px, py));
         }
@@ -231,11 +241,16 @@ void raster(const Target& target, const Setup& s, Counters& counters, TileTest&&
     }
 }
 
-// Clips, projects and sets up every triangle of the batch, then rasterizes each piece.
-template <class PerTriangle>
-void for_each_setup(const Target& target, std::span<const glm::vec4> triangles, Counters& counters,
-                    PerTriangle&& per_triangle) {
+struct Prepared {
+  std::size_t triangle;
+  Setup setup;
+};
+
+// Clips, projects and sets up every triangle of the batch, in order.
+void prepare(const Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+             std::vector<Prepared>& out) {
   assert(triangles.size() % 3 == 0);
+  out.clear();
   for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
     ++counters.triangles_in;
     Polygon poly;
@@ -250,28 +265,54 @@ void for_each_setup(const Target& target, std::span<const glm::vec4> triangles, 
     for (int i = 0; i < poly.n; ++i) screen[i] = to_screen(poly.v[i], target.width, target.height);
     bool drawn = false;
     for (int i = 1; i + 1 < poly.n; ++i) {  // a fan: the clipped polygon is convex
-      Setup s;
-      if (!setup(screen[0], screen[i], screen[i + 1], s)) continue;
+      Prepared p{t, {}};
+      if (!setup(screen[0], screen[i], screen[i + 1], p.setup)) continue;
       drawn = true;
-      per_triangle(t, s);
+      out.push_back(p);
     }
     counters.triangles_culled += !drawn;
   }
+}
+
+void add(Counters& to, const Counters& from) {
+  to.tiles_touched += from.tiles_touched;
+  to.tiles_skipped += from.tiles_skipped;
+  to.pixels_processed += from.pixels_processed;
+  to.pixels_passed += from.pixels_passed;
+  to.count_updates += from.count_updates;
+}
+
+// Rasterizes the prepared triangles band by band (a band is a row of tiles), bands in parallel:
+// each band sees every triangle in order, so a pixel's result does not depend on the threads.
+template <class PerTriangle>
+void for_each_band(const Target& target, const std::vector<Prepared>& prepared, Counters& counters,
+                   PerTriangle&& per_triangle) {
+  std::vector<Counters> band_counters(static_cast<std::size_t>(target.tiles_y));
+  tbb::parallel_for(0, target.tiles_y, [&](int band) {
+    Counters& c = band_counters[static_cast<std::size_t>(band)];
+    const std::int64_t top = std::int64_t{band} * kTileSize * kSubpixels;
+    const std::int64_t bottom = top + std::int64_t{kTileSize} * kSubpixels;
+    for (const Prepared& p : prepared)
+      if (p.setup.max_y >= top && p.setup.min_y < bottom) per_triangle(p, band, c);
+  });
+  for (const Counters& c : band_counters) add(counters, c);
 }
 
 }  // namespace
 
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters) {
-  for_each_setup(target, triangles, counters, [&](std::size_t t, const Setup& s) {
-    const auto id = static_cast<std::uint32_t>(first_id + t);
+  std::vector<Prepared> prepared;
+  prepare(target, triangles, counters, prepared);
+  for_each_band(target, prepared, counters, [&](const Prepared& p, int band, Counters& c) {
+    const auto id = static_cast<std::uint32_t>(first_id + p.triangle);
     raster(
-        target, s, counters, [](const TileDepth&, float, float) { return true; },
+        target, p.setup, band, band + 1, c, [](const TileDepth&, float, float) { return true; },
         [&](std::size_t pixel, float z) {
           if (z < target.depth[pixel]) {
             target.depth[pixel] = z;
             target.id[pixel] = id;
-            ++counters.pixels_passed;
+            ++c.pixels_passed;
           }
         });
   });
@@ -280,22 +321,24 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters) {
   assert(weights.size() * 3 == triangles.size());
-  for_each_setup(target, triangles, counters, [&](std::size_t t, const Setup& s) {
+  std::vector<Prepared> prepared;
+  prepare(target, triangles, counters, prepared);
+  // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
+  // some fragment nearer than some stored depth, z-fail some fragment at or behind one.
+  auto tile_test = [rule](const TileDepth& tile, float zlo, float zhi) {
+    return rule == CountRule::zpass ? zlo < tile.zmax : zhi >= tile.zmin;
+  };
+  for_each_band(target, prepared, counters, [&](const Prepared& p, int band, Counters& c) {
     // z-pass: front faces in front of the surface add; z-fail: front faces behind it subtract.
-    const std::int32_t facing = s.front ? 1 : -1;
-    const std::int32_t delta = (rule == CountRule::zpass ? 1 : -1) * facing * weights[t];
+    const std::int32_t facing = p.setup.front ? 1 : -1;
+    const std::int32_t delta = (rule == CountRule::zpass ? 1 : -1) * facing * weights[p.triangle];
     if (delta == 0) return;
-    // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
-    // some fragment nearer than some stored depth, z-fail some fragment at or behind one.
-    auto tile_test = [rule](const TileDepth& tile, float zlo, float zhi) {
-      return rule == CountRule::zpass ? zlo < tile.zmax : zhi >= tile.zmin;
-    };
-    raster(target, s, counters, tile_test, [&](std::size_t pixel, float z) {
+    raster(target, p.setup, band, band + 1, c, tile_test, [&](std::size_t pixel, float z) {
       const bool in_front = z < target.depth[pixel];
       if (in_front == (rule == CountRule::zpass)) {
         target.count[pixel] += delta;
-        ++counters.pixels_passed;
-        ++counters.count_updates;
+        ++c.pixels_passed;
+        ++c.count_updates;
       }
     });
   });

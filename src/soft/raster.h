@@ -1,10 +1,11 @@
 // shadowvol soft: the software rasterizer's triangle stage (setup -> raster), its buffers and
-// counters. Depends on glm only; knows nothing of meshes, scenes or shadow volumes.
+// counters. Depends on glm and oneTBB only; knows nothing of meshes, scenes or shadow volumes.
 //
 // Owns: clipping in homogeneous space, snapping to a fixed-point grid, exact edge functions
 // with a top-left fill rule, the per-pixel depth and signed-count buffers, the per-tile depth
-// bounds (hi-z), and counters of the work done. Single-threaded here; the tiles are the unit a
-// threaded binner will split on.
+// bounds (hi-z), and counters of the work done. Each draw sets its triangles up once, then
+// rasterizes bands of one tile row in parallel (oneTBB); every band walks the triangles in order,
+// so results and counters do not depend on the thread count.
 //
 // Conventions:
 //   - Input vertices are in clip space (OpenGL: x, y, z in [-w, w] is inside), produced by an
