@@ -21,7 +21,9 @@
 #include <tbb/parallel_reduce.h>
 
 #include "core/topology.h"
+#include "render/renderer.h"
 #include "render/volume_builder.h"
+#include "scene/scene.h"
 #include "scene/shapes.h"
 
 namespace {
@@ -94,6 +96,35 @@ BENCHMARK(BM_VolumeGeneration)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(0.5);
+
+// A frame of the demo scene at 1920 x 1080 through the software renderer (issue #4): time per
+// stage, and the count pass's fill rate (pixels it processed per second of the count stage).
+// Goal: under 0.5 s a frame on this 2-core machine.
+void BM_RenderDemo1080(benchmark::State& state) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<std::size_t>(state.range(0)));
+  const Scene scene = *builtin_scene("demo");
+  Renderer renderer;
+  const RenderOptions options{1920, 1080, Method::automatic, Generator::automatic};
+  FrameStats sum;
+  for (auto _ : state) {
+    const Frame frame = renderer.render(scene, options);
+    sum.ms_depth += frame.stats.ms_depth;
+    sum.ms_volumes += frame.stats.ms_volumes;
+    sum.ms_counts += frame.stats.ms_counts;
+    sum.ms_shade += frame.stats.ms_shade;
+    sum.counts.pixels_processed += frame.stats.counts.pixels_processed;
+  }
+  const double frames = static_cast<double>(state.iterations());
+  state.counters["depth_ms"] = sum.ms_depth / frames;
+  state.counters["volumes_ms"] = sum.ms_volumes / frames;
+  state.counters["counts_ms"] = sum.ms_counts / frames;
+  state.counters["shade_ms"] = sum.ms_shade / frames;
+  state.counters["count_fill_Mpix/s"] =
+      static_cast<double>(sum.counts.pixels_processed) / (sum.ms_counts * 1e3);
+}
+
+BENCHMARK(BM_RenderDemo1080)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -1,0 +1,42 @@
+// The renderer gives the same frame, counters included, whatever the thread count.
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace shadowvol {
+namespace {
+
+TEST(Renderer, FrameDoesNotDependOnTheThreadCount) {
+  auto scene = builtin_scene("light-in-view");
+  ASSERT_TRUE(scene.ok());
+  const RenderOptions options{200, 120, Method::automatic, Generator::automatic};
+  std::vector<Frame> frames;
+  for (int threads : {1, 2, 4}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    Renderer renderer;
+    frames.push_back(renderer.render(*scene, options));
+  }
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    EXPECT_EQ(frames[i].image.rgba, frames[0].image.rgba);
+    EXPECT_EQ(frames[i].shadowed, frames[0].shadowed);
+    EXPECT_EQ(frames[i].stats.counts.count_updates, frames[0].stats.counts.count_updates);
+    EXPECT_EQ(frames[i].stats.counts.tiles_skipped, frames[0].stats.counts.tiles_skipped);
+    EXPECT_EQ(frames[i].stats.depth.pixels_passed, frames[0].stats.depth.pixels_passed);
+  }
+  EXPECT_GT(frames[0].stats.counts.count_updates, 1000u);
+}
+
+TEST(Renderer, OptionsOutsideTheRasterizersLimitsAreRefused) {
+  EXPECT_TRUE(check_options({640, 480}).ok());
+  EXPECT_FALSE(check_options({0, 480}).ok());
+  EXPECT_FALSE(check_options({640, 5000}).ok());
+  auto method = parse_method("zfast");
+  ASSERT_FALSE(method.ok());
+  EXPECT_EQ(method.error().message, "unknown method 'zfast': expected zpass, zfail or auto");
+}
+
+}  // namespace
+}  // namespace shadowvol
