@@ -20,6 +20,7 @@
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
+#include "scene/scene_io.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
 
@@ -186,6 +187,7 @@ Expected<Scene> load_scene(const std::string& name) {
   if (builtin) return builtin;
   std::error_code ec;
   if (!std::filesystem::exists(name, ec)) return builtin.error();  // lists the built-in names
+  if (std::filesystem::path(name).extension() == ".json") return load_scene_file(name);
   auto loaded = load_mesh(name);
   if (!loaded) return loaded.error();
   for (const std::string& w : loaded->warnings) std::cerr << "shadowvol: warning: " << w << "\n";
@@ -347,7 +349,7 @@ int main(int argc, char** argv) {
       "render", "Render a scene with exact shadows to a PNG (software rasterizer)");
   render_cmd
       ->add_option("--scene", render_args.scene,
-                   "A built-in scene (" + scene_list + ") or a mesh file")
+                   "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
       ->capture_default_str();
   render_cmd->add_option("--method", render_args.method, "zpass, zfail or auto (per object)")
       ->capture_default_str();
@@ -366,7 +368,7 @@ int main(int argc, char** argv) {
       "verify", "Render a scene and compare its shadows per pixel with the ray-traced reference");
   verify_cmd
       ->add_option("--scene", verify_args.scene,
-                   "A built-in scene (" + scene_list + ") or a mesh file")
+                   "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
       ->capture_default_str();
   verify_cmd->add_option("--method", verify_args.method, "zpass, zfail or auto")
       ->capture_default_str();

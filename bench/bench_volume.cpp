@@ -124,7 +124,12 @@ void BM_RenderDemo1080(benchmark::State& state) {
       static_cast<double>(sum.counts.pixels_processed) / (sum.ms_counts * 1e3);
 }
 
-BENCHMARK(BM_RenderDemo1080)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RenderDemo1080)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

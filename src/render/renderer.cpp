@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 namespace shadowvol {

@@ -208,8 +208,10 @@ void raster(const Target& target, const Setup& s, int band_begin, int band_end, 
   const float zhi_triangle = std::max({s.v[0].z, s.v[1].z, s.v[2].z});
   for (int ty = py0 / kTileSize; ty <= py1 / kTileSize; ++ty)
     for (int tx = px0 / kTileSize; tx <= px1 / kTileSize; ++tx) {
-      const int x0 = std::max(px0, tx * kTileSize), x1 = std::min(px1, tx * kTileSize + kTileSize - 1);
-      const int y0 = std::max(py0, ty * kTileSize), y1 = std::min(py1, ty * kTileSize + kTileSize - 1);
+      const int x0 = std::max(px0, tx * kTileSize),
+                x1 = std::min(px1, tx * kTileSize + kTileSize - 1);
+      const int y0 = std::max(py0, ty * kTileSize),
+                y1 = std::min(py1, ty * kTileSize + kTileSize - 1);
       bool outside = false, covers_all = true;
       for (int i = 0; i < 3 && !outside; ++i) {
         const std::int64_t e[4] = {edge_at(s, i, x0, y0), edge_at(s, i, x1, y0),
@@ -224,12 +226,14 @@ void raster(const Target& target, const Setup& s, int band_begin, int band_end, 
                           depth_at(s, x1, y1)};
       const float zlo = std::max(zlo_triangle, std::min({c[0], c[1], c[2], c[3]}));
       const float zhi = std::min(zhi_triangle, std::max({c[0], c[1], c[2], c[3]}));
-      if (!tile_test(target.tile_depth[static_cast<std::size_t>(ty) * target.tiles_x + tx], zlo, zhi)) {
+      if (!tile_test(target.tile_depth[static_cast<std::size_t>(ty) * target.tiles_x + tx], zlo,
+                     zhi)) {
         ++counters.tiles_skipped;
         continue;
       }
       for (int py = y0; py <= y1; ++py) {
-        std::int64_t e0 = edge_at(s, 0, x0, py), e1 = edge_at(s, 1, x0, py), e2 = edge_at(s, 2, x0, py);
+        std::int64_t e0 = edge_at(s, 0, x0, py), e1 = edge_at(s, 1, x0, py),
+                     e2 = edge_at(s, 2, x0, py);
         const std::int64_t step0 = -s.dy[0] * kSubpixels, step1 = -s.dy[1] * kSubpixels,
                            step2 = -s.dy[2] * kSubpixels;
         for (int px = x0; px <= x1; ++px, e0 += step0, e1 += step1, e2 += step2) {

@@ -10,6 +10,7 @@
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
+#include "scene/scene_io.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
 
@@ -74,6 +75,13 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   EXPECT_EQ(scene.error().message,
             "unknown scene 'dmeo': the built-in scenes are demo, camera-in-shadow, light-in-view, "
             "directional, nonmanifold");
+}
+
+TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
+  auto scene = load_scene_file(std::string(SHADOWVOL_SOURCE_DIR) + "/scenes/knot.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  for (Method m : {Method::zpass, Method::zfail, Method::automatic})
+    EXPECT_EQ(verify(*scene, m).mismatched_outside_band, 0u) << to_string(m);
 }
 
 class RealMeshes : public ::testing::TestWithParam<std::string> {};

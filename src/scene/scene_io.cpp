@@ -1,0 +1,240 @@
+#include "scene/scene_io.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/volume.h"
+#include "scene/mesh_io.h"
+#include "scene/shapes.h"
+
+namespace shadowvol {
+namespace {
+
+using nlohmann::json;
+
+// Errors carry the key path; Reader methods return false after recording the first one.
+struct Reader {
+  std::string file;
+  std::string error;
+
+  bool fail(const std::string& path, const std::string& what) {
+    if (error.empty()) error = file + ": " + path + ": " + what;
+    return false;
+  }
+  static std::string kind(const json& j) { return std::string(j.type_name()); }
+
+  bool number(const json& j, const std::string& path, float& out) {
+    if (!j.is_number()) return fail(path, "expected a number, got " + kind(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v) || std::abs(v) > 1e18)
+      return fail(path, "the number is not finite or is too large");
+    out = static_cast<float>(v);
+    return true;
+  }
+  bool vec3(const json& j, const std::string& path, glm::vec3& out) {
+    if (!j.is_array() || j.size() != 3)
+      return fail(path, "expected 3 numbers [x, y, z], got " + kind(j));
+    for (int i = 0; i < 3; ++i)
+      if (!number(j[i], path + "[" + std::to_string(i) + "]", out[i])) return false;
+    return true;
+  }
+  bool color(const json& j, const std::string& path, glm::vec3& out) {
+    if (!vec3(j, path, out)) return false;
+    for (int i = 0; i < 3; ++i)
+      if (out[i] < 0.0f || out[i] > 1000.0f)
+        return fail(path, "a colour channel must lie in [0, 1000]");
+    return true;
+  }
+  // Optional key: absent leaves `out` as it is.
+  template <class F>
+  bool optional(const json& object, const std::string& path, const char* key, F&& read) {
+    const auto it = object.find(key);
+    return it == object.end() || read(*it, path + "." + key);
+  }
+  bool keys(const json& object, const std::string& path,
+            std::initializer_list<const char*> allowed) {
+    if (!object.is_object()) return fail(path, "expected an object {...}, got " + kind(object));
+    for (const auto& [key, value] : object.items()) {
+      bool known = false;
+      for (const char* a : allowed) known |= key == a;
+      if (!known) {
+        std::string list;
+        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        return fail(path + "." + key, "unknown key (expected one of: " + list + ")");
+      }
+    }
+    return true;
+  }
+
+  bool transform(const json& j, const std::string& path, glm::mat4& out) {
+    if (!keys(j, path, {"translate", "rotate", "scale"})) return false;
+    glm::vec3 translate(0.0f), rotate(0.0f), scale(1.0f);
+    if (!optional(j, path, "translate",
+                  [&](const json& v, const std::string& p) { return vec3(v, p, translate); }))
+      return false;
+    if (!optional(j, path, "rotate",
+                  [&](const json& v, const std::string& p) { return vec3(v, p, rotate); }))
+      return false;
+    if (!optional(j, path, "scale", [&](const json& v, const std::string& p) {
+          if (v.is_number()) {
+            float s = 1.0f;
+            if (!number(v, p, s)) return false;
+            scale = glm::vec3(s);
+            return true;
+          }
+          return vec3(v, p, scale);
+        }))
+      return false;
+    for (int i = 0; i < 3; ++i)
+      if (scale[i] == 0.0f) return fail(path + ".scale", "a scale of 0 flattens the object");
+    // translate * rotate (x, then y, then z, in degrees) * scale
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
+    m = glm::rotate(m, glm::radians(rotate.z), glm::vec3(0, 0, 1));
+    m = glm::rotate(m, glm::radians(rotate.y), glm::vec3(0, 1, 0));
+    m = glm::rotate(m, glm::radians(rotate.x), glm::vec3(1, 0, 0));
+    out = glm::scale(m, scale);
+    return true;
+  }
+
+  bool shape(const json& j, const std::string& path, Mesh& out) {
+    if (!j.is_string()) return fail(path, "expected a shape name, got " + kind(j));
+    const std::string name = j.get<std::string>();
+    if (name == "box")
+      out = make_box(glm::vec3(-0.5f), glm::vec3(0.5f));
+    else if (name == "open_box")
+      out = make_box(glm::vec3(-0.5f), glm::vec3(0.5f), false);
+    else if (name == "ground")
+      out = make_ground(1.0f);
+    else if (name == "torus")
+      out = make_bumpy_torus(96, 32, 1.0f, 0.35f, 0);
+    else if (name == "bumpy_torus")
+      out = make_bumpy_torus(96, 32);
+    else
+      return fail(path, "unknown shape '" + name +
+                            "' (expected box, open_box, ground, torus or bumpy_torus)");
+    return true;
+  }
+};
+
+}  // namespace
+
+Expected<Scene> load_scene_file(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return make_error(name + ": cannot be opened for reading");
+  json root;
+  try {
+    root = json::parse(in, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    return make_error(name + ": not valid JSON (" + e.what() + ")");
+  }
+  Reader r{name, {}};
+  Scene scene;
+  scene.name = path.stem().string();
+  if (!r.keys(root, "scene", {"camera", "lights", "objects", "ambient"}))
+    return make_error(r.error);
+
+  if (!root.contains("camera")) return make_error(name + ": scene.camera: missing");
+  const json& cam = root["camera"];
+  if (!r.keys(cam, "scene.camera", {"position", "target", "up", "fov", "near"}))
+    return make_error(r.error);
+  for (const char* required : {"position", "target"})
+    if (!cam.contains(required))
+      return make_error(name + ": scene.camera." + required + ": missing");
+  r.vec3(cam["position"], "scene.camera.position", scene.camera.position) &&
+      r.vec3(cam["target"], "scene.camera.target", scene.camera.target) &&
+      r.optional(
+          cam, "scene.camera", "up",
+          [&](const json& v, const std::string& p) { return r.vec3(v, p, scene.camera.up); }) &&
+      r.optional(cam, "scene.camera", "fov",
+                 [&](const json& v, const std::string& p) {
+                   return r.number(v, p, scene.camera.fov_y_degrees) &&
+                          (scene.camera.fov_y_degrees > 1.0f && scene.camera.fov_y_degrees < 179.0f
+                               ? true
+                               : r.fail(p, "the field of view must lie between 1 and 179 degrees"));
+                 }) &&
+      r.optional(cam, "scene.camera", "near", [&](const json& v, const std::string& p) {
+        return r.number(v, p, scene.camera.near) &&
+               (scene.camera.near > 0.0f ? true : r.fail(p, "the near distance must be positive"));
+      });
+  if (!r.error.empty()) return make_error(r.error);
+  if (glm::length(scene.camera.target - scene.camera.position) == 0.0f)
+    return make_error(name + ": scene.camera.target: the camera looks at its own position");
+
+  if (root.contains("ambient") && !r.color(root["ambient"], "scene.ambient", scene.ambient))
+    return make_error(r.error);
+
+  if (!root.contains("lights") || !root["lights"].is_array() || root["lights"].empty())
+    return make_error(name + ": scene.lights: expected a list of at least one light");
+  for (std::size_t i = 0; i < root["lights"].size(); ++i) {
+    const json& l = root["lights"][i];
+    const std::string p = "scene.lights[" + std::to_string(i) + "]";
+    if (!r.keys(l, p, {"position", "direction", "color", "intensity"})) return make_error(r.error);
+    SceneLight light;
+    glm::vec3 v(0.0f);
+    if (l.contains("position") == l.contains("direction"))
+      return make_error(
+          name + ": " + p +
+          ": give either position (a point light) or direction (a directional light)");
+    const bool point = l.contains("position");
+    if (!r.vec3(point ? l["position"] : l["direction"], p + (point ? ".position" : ".direction"),
+                v))
+      return make_error(r.error);
+    light.position = glm::vec4(v, point ? 1.0f : 0.0f);
+    if (auto ok = check_light(light.position); !ok)
+      return make_error(name + ": " + p + ": " + ok.error().message);
+    if (!r.optional(
+            l, p, "color",
+            [&](const json& c, const std::string& q) { return r.color(c, q, light.color); }) ||
+        !r.optional(l, p, "intensity", [&](const json& c, const std::string& q) {
+          return r.number(c, q, light.intensity) &&
+                 (light.intensity >= 0.0f ? true : r.fail(q, "must not be negative"));
+        }))
+      return make_error(r.error);
+    scene.lights.push_back(light);
+  }
+
+  if (!root.contains("objects") || !root["objects"].is_array())
+    return make_error(name + ": scene.objects: expected a list of objects");
+  for (std::size_t i = 0; i < root["objects"].size(); ++i) {
+    const json& o = root["objects"][i];
+    const std::string p = "scene.objects[" + std::to_string(i) + "]";
+    if (!r.keys(o, p, {"name", "mesh", "shape", "transform", "color"})) return make_error(r.error);
+    if (o.contains("mesh") == o.contains("shape"))
+      return make_error(name + ": " + p +
+                        ": give either mesh (a file) or shape (a built-in shape)");
+    Mesh mesh;
+    std::string object_name = "object" + std::to_string(i);
+    if (o.contains("name")) {
+      if (!o["name"].is_string()) return make_error(name + ": " + p + ".name: expected a string");
+      object_name = o["name"].get<std::string>();
+    }
+    if (o.contains("mesh")) {
+      if (!o["mesh"].is_string())
+        return make_error(name + ": " + p + ".mesh: expected a file name");
+      std::filesystem::path file = o["mesh"].get<std::string>();
+      if (file.is_relative()) file = path.parent_path() / file;
+      auto loaded = load_mesh(file);
+      if (!loaded) return make_error(name + ": " + p + ".mesh: " + loaded.error().message);
+      mesh = std::move(loaded->mesh);
+    } else if (!r.shape(o["shape"], p + ".shape", mesh)) {
+      return make_error(r.error);
+    }
+    glm::mat4 transform(1.0f);
+    glm::vec3 color(0.8f);
+    if (!r.optional(
+            o, p, "transform",
+            [&](const json& t, const std::string& q) { return r.transform(t, q, transform); }) ||
+        !r.optional(o, p, "color",
+                    [&](const json& c, const std::string& q) { return r.color(c, q, color); }))
+      return make_error(r.error);
+    scene.objects.push_back(make_object(object_name, std::move(mesh), transform, color));
+  }
+  return scene;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,86 @@
+// Scene files: the shipped example loads and matches the reference; every bad or missing value
+// is refused with the file and the key path.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "scene/scene_io.h"
+
+namespace shadowvol {
+namespace {
+
+std::filesystem::path write_temp(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("shadowvol_test_" + name + ".json");
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(SceneFile, TheShippedExampleLoads) {
+  auto scene = load_scene_file(std::string(SHADOWVOL_SOURCE_DIR) + "/scenes/knot.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_EQ(scene->name, "knot");
+  ASSERT_EQ(scene->objects.size(), 4u);
+  EXPECT_EQ(scene->objects[1].name, "knot");
+  EXPECT_EQ(scene->objects[1].mesh->triangle_count(), 5760u);  // meshes/ relative to the file
+  ASSERT_EQ(scene->lights.size(), 2u);
+  EXPECT_EQ(scene->lights[1].position.w, 0.0f);  // "direction": a directional light
+}
+
+struct Bad {
+  const char* name;
+  const char* json;
+  const char* message;  // after "<file>: " (the JSON parser's own detail may follow)
+};
+
+void PrintTo(const Bad& bad, std::ostream* os) { *os << bad.name; }
+
+class SceneFileRefuses : public ::testing::TestWithParam<Bad> {};
+
+TEST_P(SceneFileRefuses, WithTheKeyPath) {
+  const auto path = write_temp(GetParam().name, GetParam().json);
+  auto scene = load_scene_file(path);
+  ASSERT_FALSE(scene.ok());
+  const std::string expected = path.string() + ": " + GetParam().message;
+  EXPECT_EQ(scene.error().message.substr(0, expected.size()), expected);
+}
+
+constexpr const char* kCamera = R"("camera": {"position": [0, 2, 5], "target": [0, 0, 0]})";
+constexpr const char* kLight = R"("lights": [{"position": [1, 5, 1]}])";
+
+INSTANTIATE_TEST_SUITE_P(
+    BadFiles, SceneFileRefuses,
+    ::testing::Values(
+        Bad{"not_json", "{ camera: ", "not valid JSON"},
+        Bad{"no_camera", R"({"lights": [], "objects": []})", "scene.camera: missing"},
+        Bad{"unknown_key", R"({"camera": {"position": [0,2,5], "target": [0,0,0], "zoom": 2}})",
+            "scene.camera.zoom: unknown key (expected one of: position, target, up, fov, near)"},
+        Bad{"short_vector", R"({"camera": {"position": [0, 2], "target": [0,0,0]}})",
+            "scene.camera.position: expected 3 numbers [x, y, z], got array"},
+        Bad{"no_lights", R"({"camera": {"position": [0,2,5], "target": [0,0,0]}, "objects": []})",
+            "scene.lights: expected a list of at least one light"},
+        Bad{"light_both", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,1,1], "direction": [0,1,0]}], "objects": []})",
+            "scene.lights[0]: give either position (a point light) or direction (a directional "
+            "light)"},
+        Bad{"zero_direction", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"direction": [0,0,0]}], "objects": []})",
+            "scene.lights[0]: a directional light needs a direction: x, y and z are all 0"},
+        Bad{"bad_scale", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}],
+              "objects": [{"shape": "box"}, {"shape": "box", "transform": {"scale": "big"}}]})",
+            "scene.objects[1].transform.scale: expected 3 numbers [x, y, z], got string"},
+        Bad{"unknown_shape", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"shape": "teapot"}]})",
+            "scene.objects[0].shape: unknown shape 'teapot' (expected box, open_box, ground, torus "
+            "or bumpy_torus)"},
+        Bad{"missing_mesh", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"mesh": "/nonexistent/x.obj"}]})",
+            "scene.objects[0].mesh: /nonexistent/x.obj: no such file"},
+        Bad{"bad_color", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"shape": "box", "color": [1, -1, 0]}]})",
+            "scene.objects[0].color: a colour channel must lie in [0, 1000]"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace shadowvol
