@@ -156,11 +156,13 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
 
   // --- per light: volumes, counts ---
   frame.shadowed.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
-  volumes_.resize(scene.objects.size());
+  cache_.resize(scene.lights.size());
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     const glm::vec4 light = scene.lights[l].position;
     start = Clock::now();
-    std::vector<VolumeJob> jobs(scene.objects.size());
+    std::vector<CachedVolume>& cache = cache_[l];
+    cache.resize(scene.objects.size());
+    std::vector<VolumeJob> jobs;
     std::vector<bool> zfail(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       const SceneObject& object = scene.objects[o];
@@ -171,16 +173,24 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
           lo = glm::min(lo, q);
           hi = glm::max(hi, q);
         }
-        zfail[o] =
-            may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect, light);
+        zfail[o] = may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect, light);
       } else {
         zfail[o] = options.method == Method::zfail;
       }
       (zfail[o] ? stats.objects_zfail : stats.objects_zpass) += 1;
-      jobs[o] = {object.topology.get(),
-                 glm::inverse(object.transform) * light,
-                 {options.generator, static_cast<bool>(zfail[o])},
-                 &volumes_[o]};
+      const glm::vec4 object_light = glm::inverse(object.transform) * light;
+      const VolumeOptions volume_options{options.generator, static_cast<bool>(zfail[o])};
+      CachedVolume& c = cache[o];
+      if (c.topology == object.topology && c.light == object_light &&
+          c.options.generator == volume_options.generator && c.options.caps == volume_options.caps) {
+        ++stats.volumes_reused;
+        continue;
+      }
+      c.topology = object.topology;
+      c.light = object_light;
+      c.options = volume_options;
+      jobs.push_back({c.topology.get(), object_light, volume_options, &c.volume});
+      ++stats.volumes_built;
     }
     builder_.build(jobs);
     stats.ms_volumes += ms_since(start);
@@ -190,7 +200,7 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
     std::vector<std::int32_t> weights;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       const SceneObject& object = scene.objects[o];
-      const VolumeBuffer& v = volumes_[o];
+      const VolumeBuffer& v = cache[o].volume;
       stats.volume_primitives += v.primitive_count();
       const glm::mat4 mvp = view_proj * object.transform;
       // A mirroring transform reverses every primitive's winding: negate the weights.

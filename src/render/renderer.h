@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -44,6 +45,7 @@ struct FrameStats {
   std::size_t triangles = 0;                 // scene triangles drawn in the depth pass
   std::size_t volume_primitives = 0;         // over all lights
   int objects_zpass = 0, objects_zfail = 0;  // over all lights
+  int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work
   soft::Counters depth, counts;
 };
 
@@ -63,12 +65,21 @@ Expected<void> check_options(const RenderOptions& options);
 class Renderer {
  public:
   // Renders one frame. The scene's lights must pass check_light and the options check_options
-  // (asserted). Volumes are rebuilt every frame.
+  // (asserted). Volume cache: a volume is built in its object's own space, so an object whose
+  // light, seen from the object (inverse transform times light), generator and need of caps are
+  // those of the last frame reuses last frame's volume; the others are rebuilt, in parallel.
   Frame render(const Scene& scene, const RenderOptions& options);
 
  private:
+  struct CachedVolume {
+    // Held, not just pointed to: while cached, no other topology can take its address.
+    std::shared_ptr<const Topology> topology;
+    glm::vec4 light{0.0f};
+    VolumeOptions options;
+    VolumeBuffer volume;
+  };
   VolumeBuilder builder_;
-  std::vector<VolumeBuffer> volumes_;
+  std::vector<std::vector<CachedVolume>> cache_;  // [light][object]
   soft::Target target_;
 };
 

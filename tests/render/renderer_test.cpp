@@ -29,6 +29,31 @@ TEST(Renderer, FrameDoesNotDependOnTheThreadCount) {
   EXPECT_GT(frames[0].stats.counts.count_updates, 1000u);
 }
 
+TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
+  auto scene = builtin_scene("demo");
+  ASSERT_TRUE(scene.ok());
+  const RenderOptions options{160, 90, Method::automatic, Generator::automatic};
+  Renderer renderer;
+  const Frame first = renderer.render(*scene, options);
+  EXPECT_EQ(first.stats.volumes_built, 4);
+  EXPECT_EQ(first.stats.volumes_reused, 0);
+  const Frame second = renderer.render(*scene, options);
+  EXPECT_EQ(second.stats.volumes_built, 0);
+  EXPECT_EQ(second.stats.volumes_reused, 4);
+  EXPECT_EQ(second.image.rgba, first.image.rgba);
+  // Move the box: only its volume is rebuilt, and the frame equals a fresh renderer's.
+  scene->objects[2].transform[3] += glm::vec4(0.3f, 0.0f, 0.2f, 0.0f);
+  const Frame third = renderer.render(*scene, options);
+  EXPECT_EQ(third.stats.volumes_built, 1);
+  EXPECT_EQ(third.stats.volumes_reused, 3);
+  Renderer fresh;
+  EXPECT_EQ(third.image.rgba, fresh.render(*scene, options).image.rgba);
+  EXPECT_NE(third.image.rgba, first.image.rgba);
+  // Moving the light rebuilds them all.
+  scene->lights[0].position.x += 0.5f;
+  EXPECT_EQ(renderer.render(*scene, options).stats.volumes_built, 4);
+}
+
 TEST(Renderer, OptionsOutsideTheRasterizersLimitsAreRefused) {
   EXPECT_TRUE(check_options({640, 480}).ok());
   EXPECT_FALSE(check_options({0, 480}).ok());
