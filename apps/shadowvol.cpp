@@ -212,6 +212,7 @@ struct RenderArgs {
   std::string size = "960x540";
   std::string out = "shadowvol.png";
   bool stats = false;
+  bool show_volumes = false;
   int frames = 1;
 };
 
@@ -227,7 +228,7 @@ int render(const RenderArgs& args) {
   if (!generator) return fail("--generator: " + generator.error().message);
   auto size = parse_size(args.size);
   if (!size) return fail(size.error().message);
-  RenderOptions options{size->first, size->second, *method, *generator};
+  RenderOptions options{size->first, size->second, *method, *generator, args.show_volumes};
   if (auto ok = check_options(options); !ok) return fail("--size: " + ok.error().message);
   if (args.frames < 1)
     return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
@@ -362,6 +363,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   render_cmd->add_option("--out", render_args.out, "PNG file to write")->capture_default_str();
   render_cmd->add_flag("--stats", render_args.stats, "Print the frame's timings and counters");
+  render_cmd->add_flag("--show-volumes", render_args.show_volumes,
+                       "Draw the shadow volumes' edges over the image (one colour per light)");
   render_cmd->add_option("--frames", render_args.frames, "Render this many frames (timing)")
       ->capture_default_str();
 

@@ -33,6 +33,9 @@ struct RenderOptions {
   int height = 540;
   Method method = Method::automatic;
   Generator generator = Generator::automatic;
+  // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
+  // one colour per light, so that a person can see the volumes.
+  bool show_volumes = false;
 };
 
 struct Image {
