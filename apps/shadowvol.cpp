@@ -252,12 +252,14 @@ int render(const RenderArgs& args) {
     const FrameStats& s = frame.stats;
     std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms\n", s.ms_depth,
                 s.ms_volumes, s.ms_counts, s.ms_shade);
-    std::printf("  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d, "
-                "volumes built %d, reused %d\n",
-                s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.volumes_built,
-                s.volumes_reused);
     std::printf(
-        "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z,"
+        "  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d, "
+        "volumes built %d, reused %d\n",
+        s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.volumes_built,
+        s.volumes_reused);
+    std::printf(
+        "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
+        "or depth bounds,"
         " %llu pixels processed, %llu count updates\n",
         (unsigned long long)s.counts.triangles_in, (unsigned long long)s.counts.triangles_clipped,
         (unsigned long long)s.counts.tiles_touched, (unsigned long long)s.counts.tiles_skipped,

@@ -196,7 +196,8 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
           lo = glm::min(lo, q);
           hi = glm::max(hi, q);
         }
-        zfail[o] = may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect, light);
+        zfail[o] =
+            may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect, light);
       } else {
         zfail[o] = options.method == Method::zfail;
       }
@@ -205,7 +206,8 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
       const VolumeOptions volume_options{options.generator, static_cast<bool>(zfail[o])};
       CachedVolume& c = cache[o];
       if (c.topology == object.topology && c.light == object_light &&
-          c.options.generator == volume_options.generator && c.options.caps == volume_options.caps) {
+          c.options.generator == volume_options.generator &&
+          c.options.caps == volume_options.caps) {
         ++stats.volumes_reused;
         continue;
       }
@@ -235,8 +237,15 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
         clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris, weights);
         clip_volume(v.dark_caps, kTriangleCorners, mvp, sign, tris, weights);
       }
+      // Depth bounds: the volume's nearest window depth (a triangle's depth is affine on the
+      // screen, so its range is its vertices'; one behind the near plane reaches depth 0).
+      soft::DepthBounds bounds{1.0f, 1.0f};
+      for (const glm::vec4& c : tris)
+        bounds.zmin =
+            std::min(bounds.zmin, c.w <= 0.0f || c.z < -c.w ? 0.0f : (c.z / c.w + 1.0f) * 0.5f);
       soft::draw_counts(target_, tris, weights,
-                        zfail[o] ? soft::CountRule::zfail : soft::CountRule::zpass, stats.counts);
+                        zfail[o] ? soft::CountRule::zfail : soft::CountRule::zpass, stats.counts,
+                        bounds);
     }
     for (std::size_t p = 0; p < pixels; ++p) frame.shadowed[l][p] = target_.count[p] != 0;
     stats.ms_counts += ms_since(start);

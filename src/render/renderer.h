@@ -45,9 +45,9 @@ struct Image {
 
 struct FrameStats {
   double ms_depth = 0, ms_volumes = 0, ms_counts = 0, ms_shade = 0;
-  std::size_t triangles = 0;                 // scene triangles drawn in the depth pass
-  std::size_t volume_primitives = 0;         // over all lights
-  int objects_zpass = 0, objects_zfail = 0;  // over all lights
+  std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
+  std::size_t volume_primitives = 0;          // over all lights
+  int objects_zpass = 0, objects_zfail = 0;   // over all lights
   int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work
   soft::Counters depth, counts;
 };

@@ -323,13 +323,15 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
 }
 
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
-                 std::span<const std::int32_t> weights, CountRule rule, Counters& counters) {
+                 std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
+                 DepthBounds bounds) {
   assert(weights.size() * 3 == triangles.size());
   std::vector<Prepared> prepared;
   prepare(target, triangles, counters, prepared);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer than some stored depth, z-fail some fragment at or behind one.
-  auto tile_test = [rule](const TileDepth& tile, float zlo, float zhi) {
+  auto tile_test = [rule, bounds](const TileDepth& tile, float zlo, float zhi) {
+    if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax) return false;
     return rule == CountRule::zpass ? zlo < tile.zmax : zhi >= tile.zmin;
   };
   for_each_band(target, prepared, counters, [&](const Prepared& p, int band, Counters& c) {
@@ -338,7 +340,9 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     const std::int32_t delta = (rule == CountRule::zpass ? 1 : -1) * facing * weights[p.triangle];
     if (delta == 0) return;
     raster(target, p.setup, band, band + 1, c, tile_test, [&](std::size_t pixel, float z) {
-      const bool in_front = z < target.depth[pixel];
+      const float stored = target.depth[pixel];
+      if (stored < bounds.zmin || stored > bounds.zmax) return;
+      const bool in_front = z < stored;
       if (in_front == (rule == CountRule::zpass)) {
         target.count[pixel] += delta;
         ++c.pixels_passed;

@@ -73,7 +73,7 @@ struct Counters {
   std::uint64_t triangles_clipped = 0;  // needed clipping (near plane or guard band)
   std::uint64_t triangles_culled = 0;   // nothing left after clipping, or zero area
   std::uint64_t tiles_touched = 0;      // tiles overlapped by a triangle's bounding box
-  std::uint64_t tiles_skipped = 0;      // of those, rejected whole by the hi-z test
+  std::uint64_t tiles_skipped = 0;      // of those, rejected whole by hi-z or depth bounds
   std::uint64_t pixels_processed = 0;   // covered pixels that reached the depth test
   std::uint64_t pixels_passed = 0;      // of those, passed it (an occlusion query's answer)
   std::uint64_t count_updates = 0;      // count buffer writes
@@ -90,10 +90,21 @@ enum class CountRule {
   zfail,  // fragments at or behind it: front faces subtract the weight, back faces add
 };
 
+// A depth-bounds test (EXT_depth_bounds_test; McGuire et al. 2003): pixels whose stored depth
+// lies outside [zmin, zmax] are left alone. For a shadow volume, [its nearest depth, 1]: a
+// surface in front of the whole volume is outside it, and under z-fail would otherwise be
+// touched by every primitive only for their counts to cancel.
+struct DepthBounds {
+  float zmin = 0.0f;
+  float zmax = 1.0f;
+};
+
 // Count pass: each triangle changes the count of the pixels it covers by its signed weight
 // (weights[t], one per triangle), by the rule above, in one write; depth is not written. Tiles
-// whose depth bounds prove that no pixel can pass the rule's test are skipped whole.
+// whose depth bounds prove that no pixel can pass the rule's test, or whose depths all lie
+// outside `bounds`, are skipped whole.
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
-                 std::span<const std::int32_t> weights, CountRule rule, Counters& counters);
+                 std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
+                 DepthBounds bounds = {});
 
 }  // namespace shadowvol::soft

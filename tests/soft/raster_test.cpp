@@ -259,6 +259,14 @@ TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
   EXPECT_EQ(zfail.tiles_skipped, 0u);
   EXPECT_EQ(zfail.count_updates, zfail.pixels_processed);
   EXPECT_GT(zfail.count_updates, 0u);
+  // Depth bounds that exclude the wall's depth leave every pixel alone, tile by tile.
+  Counters bounded;
+  const std::vector<std::int32_t> before = target.count;
+  draw_counts(target, behind, std::vector<std::int32_t>{1}, CountRule::zfail, bounded,
+              DepthBounds{0.995f, 1.0f});
+  EXPECT_EQ(bounded.count_updates, 0u);
+  EXPECT_EQ(bounded.tiles_skipped, bounded.tiles_touched);
+  EXPECT_EQ(target.count, before);
   // A triangle at infinity (all w = 0) lies at depth 1: behind the wall for z-fail too.
   std::vector<glm::vec4> at_infinity = {proj * glm::vec4(-1, -1, -5, 0),
                                         proj * glm::vec4(1, -1, -5, 0),
