@@ -239,7 +239,7 @@ int render(const RenderArgs& args) {
   for (int i = 0; i < args.frames; ++i) {
     if (args.frames > 1)
       status.show("frame " + std::to_string(i + 1) + " of " + std::to_string(args.frames));
-    frame = renderer.render(*scene, options);
+    frame = renderer.render(scene_at_frame(*scene, i), options);
   }
   status.clear();
   const Image& img = frame.image;
@@ -275,6 +275,7 @@ struct VerifyArgs {
   std::string size = "480x270";
   std::string diff;
   bool json = false;
+  int frame = 0;
 };
 
 int verify(const VerifyArgs& args) {
@@ -289,9 +290,12 @@ int verify(const VerifyArgs& args) {
   RenderOptions options{size->first, size->second, *method, *generator};
   if (auto ok = check_options(options); !ok) return fail("--size: " + ok.error().message);
 
+  if (args.frame < 0)
+    return fail("--frame: " + std::to_string(args.frame) + " is not a frame number");
+  const Scene at = scene_at_frame(*scene, args.frame);
   Renderer renderer;
-  const Frame frame = renderer.render(*scene, options);
-  auto reference = trace_reference(*scene, options.width, options.height);
+  const Frame frame = renderer.render(at, options);
+  auto reference = trace_reference(at, options.width, options.height);
   if (!reference) return fail(reference.error().message);
   const Comparison c = compare(frame, *reference);
   if (!args.diff.empty()) {
@@ -305,6 +309,7 @@ int verify(const VerifyArgs& args) {
                                 {"method", std::string(to_string(*method))},
                                 {"generator", std::string(to_string(*generator))},
                                 {"backend", "soft"},
+                                {"frame", args.frame},
                                 {"width", options.width},
                                 {"height", options.height},
                                 {"pixels_compared", c.pixels_compared},
@@ -367,7 +372,9 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--stats", render_args.stats, "Print the frame's timings and counters");
   render_cmd->add_flag("--show-volumes", render_args.show_volumes,
                        "Draw the shadow volumes' edges over the image (one colour per light)");
-  render_cmd->add_option("--frames", render_args.frames, "Render this many frames (timing)")
+  render_cmd
+      ->add_option("--frames", render_args.frames,
+                   "Render frames 0 .. N-1 of the scene's animation; write the last")
       ->capture_default_str();
 
   VerifyArgs verify_args;
@@ -387,6 +394,8 @@ int main(int argc, char** argv) {
   verify_cmd->add_option("--diff", verify_args.diff,
                          "Write the mismatches over the scene to this PNG");
   verify_cmd->add_flag("--json", verify_args.json, "Print one JSON object");
+  verify_cmd->add_option("--frame", verify_args.frame, "Verify this frame of the scene's animation")
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);

@@ -20,11 +20,28 @@ glm::mat4 Camera::projection(float aspect) const {
   return glm::infinitePerspective(glm::radians(fov_y_degrees), aspect, near);
 }
 
+Scene scene_at_frame(const Scene& scene, int frame) {
+  Scene s = scene;
+  const float f = static_cast<float>(frame);
+  for (SceneObject& o : s.objects) {
+    if (o.animation.still()) continue;
+    o.transform = glm::translate(glm::mat4(1.0f), o.animation.move * f) * o.transform *
+                  glm::rotate(glm::mat4(1.0f), glm::radians(o.animation.degrees_per_frame * f),
+                              o.animation.spin_axis);
+  }
+  for (SceneLight& l : s.lights)
+    if (l.orbit_degrees_per_frame != 0.0f)
+      l.position = glm::rotate(glm::mat4(1.0f), glm::radians(l.orbit_degrees_per_frame * f),
+                               glm::vec3(0, 1, 0)) *
+                   l.position;
+  return s;
+}
+
 SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
                         const glm::vec3& color) {
   auto shared = std::make_shared<const Mesh>(std::move(mesh));
   auto topology = std::make_shared<const Topology>(build_topology(*shared));
-  return {std::move(name), std::move(shared), std::move(topology), transform, {color}};
+  return {std::move(name), std::move(shared), std::move(topology), transform, {color}, {}};
 }
 
 namespace {
@@ -61,6 +78,7 @@ Scene demo() {
   Scene s;
   s.name = "demo";
   add_demo_objects(s);
+  s.objects[1].animation = {{0.0f, 0.0f, 1.0f}, 3.0f, glm::vec3(0.0f)};  // the torus spins
   s.lights.push_back({{4.0f, 7.0f, 5.0f, 1.0f}, {1.0f, 0.97f, 0.9f}, 1.0f});
   s.camera = {{0.0f, 4.5f, 9.0f}, {0.0f, 0.6f, -0.3f}};
   return s;

@@ -24,18 +24,30 @@ struct Material {
   glm::vec3 color{0.8f};  // linear RGB albedo
 };
 
+// Motion per frame: frame f spins the object by f * degrees_per_frame about `spin_axis` (in its
+// own space, through its origin) and then moves it by f * `move` (world space).
+struct Animation {
+  glm::vec3 spin_axis{0.0f, 1.0f, 0.0f};
+  float degrees_per_frame = 0.0f;
+  glm::vec3 move{0.0f};
+
+  bool still() const { return degrees_per_frame == 0.0f && move == glm::vec3(0.0f); }
+};
+
 struct SceneObject {
   std::string name;
   std::shared_ptr<const Mesh> mesh;          // object space
   std::shared_ptr<const Topology> topology;  // of *mesh, built once
-  glm::mat4 transform{1.0f};                 // object space -> world space
+  glm::mat4 transform{1.0f};                 // object space -> world space, at frame 0
   Material material;
+  Animation animation;
 };
 
 struct SceneLight {
   glm::vec4 position{0.0f, 10.0f, 0.0f, 1.0f};  // world, homogeneous: w = 1 point, 0 directional
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
+  float orbit_degrees_per_frame = 0.0f;  // turns about the world's y axis, frame by frame
 };
 
 struct Camera {
@@ -58,12 +70,17 @@ struct Scene {
   glm::vec3 ambient{0.12f};
 };
 
+// The scene as it stands at frame `frame` of its animation (frame 0 is the scene itself).
+// Cheap: meshes and topologies are shared, not copied.
+Scene scene_at_frame(const Scene& scene, int frame);
+
 // An object from a mesh: builds its topology (welding exactly).
 SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
                         const glm::vec3& color);
 
 // The built-in scenes:
-//   demo              several objects, open and closed meshes, a ground plane, a point light
+//   demo              several objects, open and closed meshes, a ground plane, a point light;
+//                     the torus spins (3 degrees a frame) for --frames
 //   camera-in-shadow  the eye inside a shadow volume: z-pass must fail, z-fail and auto must not
 //   light-in-view     a point light inside the view frustum, volumes crossing the near plane
 //   directional       the demo objects under a directional light

@@ -173,7 +173,8 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < root["lights"].size(); ++i) {
     const json& l = root["lights"][i];
     const std::string p = "scene.lights[" + std::to_string(i) + "]";
-    if (!r.keys(l, p, {"position", "direction", "color", "intensity"})) return make_error(r.error);
+    if (!r.keys(l, p, {"position", "direction", "color", "intensity", "orbit"}))
+      return make_error(r.error);
     SceneLight light;
     glm::vec3 v(0.0f);
     if (l.contains("position") == l.contains("direction"))
@@ -190,6 +191,10 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
     if (!r.optional(
             l, p, "color",
             [&](const json& c, const std::string& q) { return r.color(c, q, light.color); }) ||
+        !r.optional(l, p, "orbit",
+                    [&](const json& c, const std::string& q) {
+                      return r.number(c, q, light.orbit_degrees_per_frame);
+                    }) ||
         !r.optional(l, p, "intensity", [&](const json& c, const std::string& q) {
           return r.number(c, q, light.intensity) &&
                  (light.intensity >= 0.0f ? true : r.fail(q, "must not be negative"));
@@ -203,7 +208,8 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < root["objects"].size(); ++i) {
     const json& o = root["objects"][i];
     const std::string p = "scene.objects[" + std::to_string(i) + "]";
-    if (!r.keys(o, p, {"name", "mesh", "shape", "transform", "color"})) return make_error(r.error);
+    if (!r.keys(o, p, {"name", "mesh", "shape", "transform", "color", "animation"}))
+      return make_error(r.error);
     if (o.contains("mesh") == o.contains("shape"))
       return make_error(name + ": " + p +
                         ": give either mesh (a file) or shape (a built-in shape)");
@@ -232,7 +238,27 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
         !r.optional(o, p, "color",
                     [&](const json& c, const std::string& q) { return r.color(c, q, color); }))
       return make_error(r.error);
+    Animation animation;
+    if (!r.optional(o, p, "animation", [&](const json& a, const std::string& q) {
+          return r.keys(a, q, {"spin", "degrees_per_frame", "move"}) &&
+                 r.optional(a, q, "spin",
+                            [&](const json& v, const std::string& k) {
+                              return r.vec3(v, k, animation.spin_axis) &&
+                                     (animation.spin_axis != glm::vec3(0.0f)
+                                          ? true
+                                          : r.fail(k, "the spin axis is 0"));
+                            }) &&
+                 r.optional(a, q, "degrees_per_frame",
+                            [&](const json& v, const std::string& k) {
+                              return r.number(v, k, animation.degrees_per_frame);
+                            }) &&
+                 r.optional(a, q, "move", [&](const json& v, const std::string& k) {
+                   return r.vec3(v, k, animation.move);
+                 });
+        }))
+      return make_error(r.error);
     scene.objects.push_back(make_object(object_name, std::move(mesh), transform, color));
+    scene.objects.back().animation = animation;
   }
   return scene;
 }

@@ -27,6 +27,24 @@ TEST(SceneFile, TheShippedExampleLoads) {
   EXPECT_EQ(scene->lights[1].position.w, 0.0f);  // "direction": a directional light
 }
 
+TEST(SceneFile, AnimationSpinsMovesAndOrbits) {
+  const auto path = write_temp("animated", R"({
+    "camera": {"position": [0, 2, 5], "target": [0, 0, 0]},
+    "lights": [{"position": [4, 5, 0], "orbit": 90}],
+    "objects": [{"shape": "box", "animation": {"spin": [0, 1, 0], "degrees_per_frame": 90,
+                                               "move": [1, 0, 0]}}]})");
+  auto scene = load_scene_file(path);
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  const Scene at = scene_at_frame(*scene, 1);
+  // The box's +x axis turned to -z, its origin moved to (1, 0, 0); the light went to (0, 5, -4).
+  const glm::vec4 x_axis = at.objects[0].transform * glm::vec4(1, 0, 0, 0);
+  EXPECT_NEAR(x_axis.z, -1.0f, 1e-6f);
+  EXPECT_NEAR(at.objects[0].transform[3].x, 1.0f, 1e-6f);
+  EXPECT_NEAR(at.lights[0].position.z, -4.0f, 1e-5f);
+  EXPECT_NEAR(at.lights[0].position.x, 0.0f, 1e-5f);
+  EXPECT_EQ(scene_at_frame(*scene, 0).objects[0].transform, scene->objects[0].transform);
+}
+
 struct Bad {
   const char* name;
   const char* json;

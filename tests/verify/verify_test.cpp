@@ -69,6 +69,14 @@ TEST(BuiltinScenes, EveryGeneratorMatchesOnTheNonManifoldScene) {
     }
 }
 
+TEST(BuiltinScenes, AnimatedFramesMatchTheReference) {
+  auto scene = builtin_scene("demo");
+  ASSERT_TRUE(scene.ok());
+  for (int f : {7, 45})
+    for (Method m : {Method::zpass, Method::zfail})
+      EXPECT_EQ(verify(scene_at_frame(*scene, f), m).mismatched_outside_band, 0u) << f;
+}
+
 TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   auto scene = builtin_scene("dmeo");
   ASSERT_FALSE(scene.ok());
