@@ -298,6 +298,11 @@ int verify(const VerifyArgs& args) {
   auto reference = trace_reference(at, options.width, options.height);
   if (!reference) return fail(reference.error().message);
   const Comparison c = compare(frame, *reference);
+  if (c.pixels_compared == 0)  // a comparison of nothing proves nothing
+    return fail(
+        "nothing to compare: no visible surface faces a light (check the camera and the "
+        "lights of " +
+        scene->name + ")");
   if (!args.diff.empty()) {
     const Image img = diff_image(frame, c);
     if (stbi_write_png(args.diff.c_str(), img.width, img.height, 4, img.rgba.data(),

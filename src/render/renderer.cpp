@@ -20,8 +20,7 @@ double ms_since(Clock::time_point start) {
 }
 
 // Clip-space triangles of an object's mesh, 3 vertices each, in face order.
-void clip_triangles(const SceneObject& o, const glm::mat4& view_proj, std::vector<glm::vec4>& out) {
-  const glm::mat4 mvp = view_proj * o.transform;
+void clip_triangles(const SceneObject& o, const glm::mat4& mvp, std::vector<glm::vec4>& out) {
   out.clear();
   out.reserve(o.mesh->indices.size());
   for (std::uint32_t i : o.mesh->indices)
@@ -139,9 +138,14 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
   if (target_.width != w || target_.height != h) target_ = soft::Target(w, h);
   Frame frame;
   FrameStats& stats = frame.stats;
-  const glm::mat4 view = scene.camera.view();
+  const glm::mat4 view = scene.camera.view_from_eye();
   const glm::mat4 proj = scene.camera.projection(static_cast<float>(w) / static_cast<float>(h));
-  const glm::mat4 view_proj = proj * view;
+  const glm::mat4 view_proj = proj * view;  // of eye-relative space
+  // Everything is drawn in eye-relative space (DESIGN.md "Numerics"): each object's transform
+  // composed with the eye's translation in double, lights likewise.
+  std::vector<glm::mat4> model(scene.objects.size());
+  for (std::size_t o = 0; o < scene.objects.size(); ++o)
+    model[o] = eye_relative(scene.objects[o].transform, scene.camera.position);
 
   // --- depth pass: ids are (first face id of the object) + face ---
   auto start = Clock::now();
@@ -151,7 +155,7 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
     first_id[o + 1] = first_id[o] + static_cast<std::uint32_t>(object.mesh->triangle_count());
-    clip_triangles(object, view_proj, tris);
+    clip_triangles(object, view_proj * model[o], tris);
     soft::draw_depth(target_, tris, first_id[o], stats.depth);
     stats.triangles += object.mesh->triangle_count();
   }
@@ -192,17 +196,17 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
       if (options.method == Method::automatic) {
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (const glm::vec3& p : object.topology->positions) {
-          const glm::vec3 q = glm::vec3(object.transform * glm::vec4(p, 1.0f));
+          const glm::vec3 q = glm::vec3(model[o] * glm::vec4(p, 1.0f));
           lo = glm::min(lo, q);
           hi = glm::max(hi, q);
         }
-        zfail[o] =
-            may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect, light);
+        zfail[o] = may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect,
+                                         eye_relative(light, scene.camera.position));
       } else {
         zfail[o] = options.method == Method::zfail;
       }
       (zfail[o] ? stats.objects_zfail : stats.objects_zpass) += 1;
-      const glm::vec4 object_light = glm::inverse(object.transform) * light;
+      const glm::vec4 object_light(glm::inverse(glm::dmat4(object.transform)) * glm::dvec4(light));
       const VolumeOptions volume_options{options.generator, static_cast<bool>(zfail[o])};
       CachedVolume& c = cache[o];
       if (c.topology == object.topology && c.light == object_light &&
@@ -227,7 +231,7 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
       const SceneObject& object = scene.objects[o];
       const VolumeBuffer& v = cache[o].volume;
       stats.volume_primitives += v.primitive_count();
-      const glm::mat4 mvp = view_proj * object.transform;
+      const glm::mat4 mvp = view_proj * model[o];
       // A mirroring transform reverses every primitive's winding: negate the weights.
       const int sign = glm::determinant(glm::mat3(object.transform)) < 0.0f ? -1 : 1;
       tris.clear();
@@ -259,7 +263,7 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
     const SceneObject& object = scene.objects[o];
     world[o].reserve(object.mesh->positions.size());
     for (const glm::vec3& p : object.mesh->positions)
-      world[o].push_back(glm::vec3(object.transform * glm::vec4(p, 1.0f)));
+      world[o].push_back(glm::vec3(model[o] * glm::vec4(p, 1.0f)));
   }
   const glm::dmat4 inv_vp(inv_view_proj);
   tbb::parallel_for(0, h, [&](int y) {
@@ -279,16 +283,16 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
                              double(target_.depth[p]) * 2.0 - 1.0, 1.0);
         const glm::dvec4 at = inv_vp * ndc;
         const glm::vec3 pos = glm::vec3(glm::dvec3(at) / at.w);
-        const glm::vec3 to_eye = glm::normalize(scene.camera.position - pos);
-        if (glm::dot(n, to_eye) < 0.0f) n = -n;  // two-sided: light the side we see
+        const glm::vec3 to_eye = glm::normalize(-pos);  // the eye is the origin
+        if (glm::dot(n, to_eye) < 0.0f) n = -n;         // two-sided: light the side we see
         const glm::vec3 albedo = object.material.color;
         color = scene.ambient * albedo;
         for (std::size_t l = 0; l < scene.lights.size(); ++l) {
           if (frame.shadowed[l][p]) continue;
           const SceneLight& light = scene.lights[l];
-          const glm::vec3 to_light = glm::normalize(
-              light.position.w != 0.0f ? glm::vec3(light.position) / light.position.w - pos
-                                       : glm::vec3(light.position));
+          const glm::vec4 lp = eye_relative(light.position, scene.camera.position);
+          const glm::vec3 to_light =
+              glm::normalize(lp.w != 0.0f ? glm::vec3(lp) / lp.w - pos : glm::vec3(lp));
           const float lambert = glm::dot(n, to_light);
           if (lambert <= 0.0f) continue;
           const float spec =
@@ -308,7 +312,7 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
     const glm::vec3 colors[] = {{1.0f, 0.9f, 0.1f}, {0.2f, 0.9f, 1.0f}, {1.0f, 0.3f, 0.8f}};
     for (std::size_t l = 0; l < cache_.size(); ++l)
       for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-        const glm::mat4 mvp = view_proj * scene.objects[o].transform;
+        const glm::mat4 mvp = view_proj * model[o];
         const PrimitiveList& sides = cache_[l][o].volume.sides;
         for (std::size_t q = 0; q < sides.size(); ++q) {
           const glm::vec4* v = &sides.vertices[q * kQuadCorners];  // u, u_inf, v_inf, v

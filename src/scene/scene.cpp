@@ -16,6 +16,19 @@ namespace shadowvol {
 
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
+glm::mat4 Camera::view_from_eye() const {
+  return glm::lookAt(glm::vec3(0.0f), target - position, up);
+}
+
+glm::mat4 eye_relative(const glm::mat4& transform, const glm::vec3& eye) {
+  return glm::mat4(glm::translate(glm::dmat4(1.0), -glm::dvec3(eye)) * glm::dmat4(transform));
+}
+
+glm::vec4 eye_relative(const glm::vec4& point, const glm::vec3& eye) {
+  const glm::dvec4 p(point);
+  return glm::vec4(p - glm::dvec4(glm::dvec3(eye) * p.w, 0.0));
+}
+
 glm::mat4 Camera::projection(float aspect) const {
   return glm::infinitePerspective(glm::radians(fov_y_degrees), aspect, near);
 }

@@ -58,6 +58,10 @@ struct Camera {
   float near = 0.1f;  // the far plane is at infinity
 
   glm::mat4 view() const;
+  // The view's rotation alone: the view of eye-relative space, where the eye is the origin.
+  // DESIGN.md "Numerics": geo-referenced models sit 1e5-1e6 units out, where float leaves
+  // centimetre steps; subtracting the eye in double first keeps every pixel exact.
+  glm::mat4 view_from_eye() const;
   // Infinite-far OpenGL projection (Everitt & Kilgard 2002): points at infinity reach depth 1.
   glm::mat4 projection(float aspect) const;
 };
@@ -69,6 +73,11 @@ struct Scene {
   Camera camera;
   glm::vec3 ambient{0.12f};
 };
+
+// An object's transform into eye-relative space (world minus the eye), composed in double.
+glm::mat4 eye_relative(const glm::mat4& transform, const glm::vec3& eye);
+// A homogeneous world point or direction in eye-relative space, subtracted in double.
+glm::vec4 eye_relative(const glm::vec4& point, const glm::vec3& eye);
 
 // The scene as it stands at frame `frame` of its animation (frame 0 is the scene itself).
 // Cheap: meshes and topologies are shared, not copied.

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
@@ -164,6 +165,11 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
   if (!r.error.empty()) return make_error(r.error);
   if (glm::length(scene.camera.target - scene.camera.position) == 0.0f)
     return make_error(name + ": scene.camera.target: the camera looks at its own position");
+  const glm::vec3 forward = glm::normalize(scene.camera.target - scene.camera.position);
+  if (glm::length(glm::cross(forward, scene.camera.up)) < 1e-6f * glm::length(scene.camera.up))
+    return make_error(name +
+                      ": scene.camera.up: parallel to the direction the camera looks in; "
+                      "give an up vector across it");
 
   if (root.contains("ambient") && !r.color(root["ambient"], "scene.ambient", scene.ambient))
     return make_error(r.error);

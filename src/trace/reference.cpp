@@ -6,6 +6,7 @@
 #include <string>
 
 #include <embree3/rtcore.h>
+#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -26,7 +27,8 @@ std::string device_error(RTCDevice device) {
   return e == RTC_ERROR_NONE ? "" : "Embree error " + std::to_string(static_cast<int>(e));
 }
 
-// World-space triangles of the scene, one Embree geometry per object (geometry id = index).
+// Eye-relative triangles of the scene (world minus the eye, in double: DESIGN.md "Numerics"),
+// one Embree geometry per object (geometry id = object index).
 Expected<EmbreeScene> build(RTCDevice device, const Scene& scene) {
   EmbreeScene es(rtcNewScene(device));
   rtcSetSceneFlags(es.get(), RTC_SCENE_FLAG_ROBUST);
@@ -44,8 +46,10 @@ Expected<EmbreeScene> build(RTCDevice device, const Scene& scene) {
       rtcReleaseGeometry(g);
       return make_error("Embree could not allocate the buffers of object '" + object.name + "'");
     }
+    const glm::dmat4 model = glm::translate(glm::dmat4(1.0), -glm::dvec3(scene.camera.position)) *
+                             glm::dmat4(object.transform);
     for (std::size_t k = 0; k < object.mesh->positions.size(); ++k) {
-      const glm::vec3 p = glm::vec3(object.transform * glm::vec4(object.mesh->positions[k], 1.0f));
+      const glm::vec3 p(model * glm::dvec4(glm::dvec3(object.mesh->positions[k]), 1.0));
       v[3 * k] = p.x, v[3 * k + 1] = p.y, v[3 * k + 2] = p.z;
     }
     for (std::size_t k = 0; k < object.mesh->indices.size(); ++k) i[k] = object.mesh->indices[k];
@@ -79,8 +83,8 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
   // Rays through the pixel centres the rasterizer samples: NDC ((x + 0.5) / w * 2 - 1, ...).
   const glm::dmat4 inv_vp =
       glm::inverse(glm::dmat4(scene.camera.projection(float(width) / float(height))) *
-                   glm::dmat4(scene.camera.view()));
-  const glm::dvec3 eye(scene.camera.position);
+                   glm::dmat4(scene.camera.view_from_eye()));
+  const glm::dvec3 eye(0.0);  // eye-relative space: the eye is the origin
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   for (int y = 0; y < height; ++y)
@@ -89,6 +93,7 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
       const glm::dvec4 far = inv_vp * glm::dvec4((x + 0.5) / width * 2.0 - 1.0,
                                                  1.0 - (y + 0.5) / height * 2.0, 0.0, 1.0);
       const glm::dvec3 dir = glm::normalize(glm::dvec3(far) / far.w - eye);
+      if (!std::isfinite(dir.x) || !std::isfinite(dir.y) || !std::isfinite(dir.z)) continue;
       RTCRayHit hit{};
       hit.ray.org_x = float(eye.x), hit.ray.org_y = float(eye.y), hit.ray.org_z = float(eye.z);
       hit.ray.dir_x = float(dir.x), hit.ray.dir_y = float(dir.y), hit.ray.dir_z = float(dir.z);
@@ -104,7 +109,7 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
       glm::dvec3 n = glm::normalize(glm::dvec3(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z));
       if (glm::dot(n, dir) > 0.0) n = -n;  // the side the eye sees
       for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-        const glm::dvec4 light(scene.lights[l].position);
+        const glm::dvec4 light(eye_relative(scene.lights[l].position, scene.camera.position));
         const glm::dvec3 to_light =
             light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
         const double distance =

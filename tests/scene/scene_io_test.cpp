@@ -75,6 +75,8 @@ INSTANTIATE_TEST_SUITE_P(
             "scene.camera.zoom: unknown key (expected one of: position, target, up, fov, near)"},
         Bad{"short_vector", R"({"camera": {"position": [0, 2], "target": [0,0,0]}})",
             "scene.camera.position: expected 3 numbers [x, y, z], got array"},
+        Bad{"up_along_view", R"({"camera": {"position": [0,2,5], "target": [0,50,5]}})",
+            "scene.camera.up: parallel to the direction the camera looks in"},
         Bad{"no_lights", R"({"camera": {"position": [0,2,5], "target": [0,0,0]}, "objects": []})",
             "scene.lights: expected a list of at least one light"},
         Bad{"light_both", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
