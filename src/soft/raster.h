@@ -67,7 +67,8 @@ struct Target {
 };
 
 // Work counters of one frame or pass (the papers' fill measures). Added, never reset, by the
-// draw functions.
+// draw functions. Given a fresh Counters, a draw's pixels_passed is its occlusion query: how
+// many of its fragments passed the depth test (for the culling work of later issues).
 struct Counters {
   std::uint64_t triangles_in = 0;
   std::uint64_t triangles_clipped = 0;  // needed clipping (near plane or guard band)
