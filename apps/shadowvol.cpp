@@ -205,11 +205,56 @@ Expected<std::pair<int, int>> parse_size(const std::string& text) {
   return make_error("--size: '" + text + "' is not WIDTHxHEIGHT, e.g. 1280x720");
 }
 
-struct RenderArgs {
+// What render and verify both take: a scene and how to draw it.
+struct FrameArgs {
   std::string scene = "demo";
   std::string method = "auto";
   std::string generator = "auto";
-  std::string size = "960x540";
+  std::string size;
+};
+
+void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_list) {
+  cmd->add_option("--scene", args.scene,
+                  "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
+      ->capture_default_str();
+  cmd->add_option("--method", args.method, "zpass, zfail or auto (per object)")
+      ->capture_default_str();
+  cmd->add_option("--generator", args.generator, "standard, robust, multiplicity or auto")
+      ->capture_default_str();
+  cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+}
+
+struct ResolvedFrame {
+  Scene scene;
+  RenderOptions options;
+};
+
+// The scene and the options, every value checked, or the first problem as a message.
+Expected<ResolvedFrame> resolve(const FrameArgs& args) {
+  auto scene = load_scene(args.scene);
+  if (!scene) return scene.error();
+  for (const SceneLight& l : scene->lights)
+    if (auto ok = check_light(l.position); !ok)
+      return make_error("scene " + scene->name + ": " + ok.error().message);
+  auto method = parse_method(args.method);
+  if (!method) return make_error("--method: " + method.error().message);
+  auto generator = parse_generator(args.generator);
+  if (!generator) return make_error("--generator: " + generator.error().message);
+  auto size = parse_size(args.size);
+  if (!size) return size.error();
+  RenderOptions options{size->first, size->second, *method, *generator};
+  if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
+  return ResolvedFrame{std::move(*scene), options};
+}
+
+Expected<void> write_png(const std::string& path, const Image& img) {
+  if (stbi_write_png(path.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4) == 0)
+    return make_error(path + ": cannot write the image (is the directory there and writable?)");
+  return {};
+}
+
+struct RenderArgs {
+  FrameArgs frame{"demo", "auto", "auto", "960x540"};
   std::string out = "shadowvol.png";
   bool stats = false;
   bool show_volumes = false;
@@ -217,19 +262,11 @@ struct RenderArgs {
 };
 
 int render(const RenderArgs& args) {
-  auto scene = load_scene(args.scene);
-  if (!scene) return fail(scene.error().message);
-  for (const SceneLight& l : scene->lights)
-    if (auto ok = check_light(l.position); !ok)
-      return fail("scene " + scene->name + ": " + ok.error().message);
-  auto method = parse_method(args.method);
-  if (!method) return fail("--method: " + method.error().message);
-  auto generator = parse_generator(args.generator);
-  if (!generator) return fail("--generator: " + generator.error().message);
-  auto size = parse_size(args.size);
-  if (!size) return fail(size.error().message);
-  RenderOptions options{size->first, size->second, *method, *generator, args.show_volumes};
-  if (auto ok = check_options(options); !ok) return fail("--size: " + ok.error().message);
+  auto resolved = resolve(args.frame);
+  if (!resolved) return fail(resolved.error().message);
+  const Scene& scene = resolved->scene;
+  RenderOptions options = resolved->options;
+  options.show_volumes = args.show_volumes;
   if (args.frames < 1)
     return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
 
@@ -239,15 +276,13 @@ int render(const RenderArgs& args) {
   for (int i = 0; i < args.frames; ++i) {
     if (args.frames > 1)
       status.show("frame " + std::to_string(i + 1) + " of " + std::to_string(args.frames));
-    frame = renderer.render(scene_at_frame(*scene, i), options);
+    frame = renderer.render(scene_at_frame(scene, i), options);
   }
   status.clear();
   const Image& img = frame.image;
-  if (stbi_write_png(args.out.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4) ==
-      0)
-    return fail(args.out + ": cannot write the image (is the directory there and writable?)");
-  std::cout << "wrote " << args.out << " (" << scene->name << ", " << img.width << "x" << img.height
-            << ", " << to_string(*method) << ")\n";
+  if (auto ok = write_png(args.out, img); !ok) return fail(ok.error().message);
+  std::cout << "wrote " << args.out << " (" << scene.name << ", " << img.width << "x" << img.height
+            << ", " << to_string(options.method) << ")\n";
   if (args.stats) {
     const FrameStats& s = frame.stats;
     std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms\n", s.ms_depth,
@@ -269,52 +304,37 @@ int render(const RenderArgs& args) {
 }
 
 struct VerifyArgs {
-  std::string scene = "demo";
-  std::string method = "auto";
-  std::string generator = "auto";
-  std::string size = "480x270";
+  FrameArgs frame{"demo", "auto", "auto", "480x270"};
   std::string diff;
   bool json = false;
-  int frame = 0;
+  int frame_number = 0;
 };
 
 int verify(const VerifyArgs& args) {
-  auto scene = load_scene(args.scene);
-  if (!scene) return fail(scene.error().message);
-  auto method = parse_method(args.method);
-  if (!method) return fail("--method: " + method.error().message);
-  auto generator = parse_generator(args.generator);
-  if (!generator) return fail("--generator: " + generator.error().message);
-  auto size = parse_size(args.size);
-  if (!size) return fail(size.error().message);
-  RenderOptions options{size->first, size->second, *method, *generator};
-  if (auto ok = check_options(options); !ok) return fail("--size: " + ok.error().message);
-
-  if (args.frame < 0)
-    return fail("--frame: " + std::to_string(args.frame) + " is not a frame number");
-  const Scene at = scene_at_frame(*scene, args.frame);
+  auto resolved = resolve(args.frame);
+  if (!resolved) return fail(resolved.error().message);
+  const RenderOptions& options = resolved->options;
+  if (args.frame_number < 0)
+    return fail("--frame: " + std::to_string(args.frame_number) + " is not a frame number");
+  const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
   Renderer renderer;
-  const Frame frame = renderer.render(at, options);
-  auto reference = trace_reference(at, options.width, options.height);
+  const Frame frame = renderer.render(scene, options);
+  auto reference = trace_reference(scene, options.width, options.height);
   if (!reference) return fail(reference.error().message);
   const Comparison c = compare(frame, *reference);
   if (c.pixels_compared == 0)  // a comparison of nothing proves nothing
     return fail(
         "nothing to compare: no visible surface faces a light (check the camera and the "
         "lights of " +
-        scene->name + ")");
-  if (!args.diff.empty()) {
-    const Image img = diff_image(frame, c);
-    if (stbi_write_png(args.diff.c_str(), img.width, img.height, 4, img.rgba.data(),
-                       img.width * 4) == 0)
-      return fail(args.diff + ": cannot write the image (is the directory there and writable?)");
-  }
+        scene.name + ")");
+  if (!args.diff.empty())
+    if (auto ok = write_png(args.diff, diff_image(frame, c)); !ok) return fail(ok.error().message);
   if (args.json) {
-    std::cout << nlohmann::json{{"scene", scene->name},
-                                {"method", std::string(to_string(*method))},
-                                {"generator", std::string(to_string(*generator))},
+    std::cout << nlohmann::json{{"scene", scene.name},
+                                {"method", std::string(to_string(options.method))},
+                                {"generator", std::string(to_string(options.generator))},
                                 {"backend", "soft"},
-                                {"frame", args.frame},
+                                {"frame", args.frame_number},
                                 {"width", options.width},
                                 {"height", options.height},
                                 {"pixels_compared", c.pixels_compared},
@@ -326,8 +346,8 @@ int verify(const VerifyArgs& args) {
     std::printf(
         "%s, %s, soft backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
         "one-pixel band: %s\n",
-        scene->name.c_str(), std::string(to_string(*method)).c_str(), options.width, options.height,
-        c.pixels_compared, c.mismatched, c.mismatched_outside_band,
+        scene.name.c_str(), std::string(to_string(options.method)).c_str(), options.width,
+        options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band,
         c.mismatched_outside_band == 0 ? "matches the reference" : "DIFFERS from the reference");
   }
   return c.mismatched_outside_band == 0 ? 0 : 1;
@@ -362,17 +382,7 @@ int main(int argc, char** argv) {
     scene_list += (scene_list.empty() ? "" : ", ") + std::string(n);
   CLI::App* render_cmd = app.add_subcommand(
       "render", "Render a scene with exact shadows to a PNG (software rasterizer)");
-  render_cmd
-      ->add_option("--scene", render_args.scene,
-                   "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
-      ->capture_default_str();
-  render_cmd->add_option("--method", render_args.method, "zpass, zfail or auto (per object)")
-      ->capture_default_str();
-  render_cmd
-      ->add_option("--generator", render_args.generator, "standard, robust, multiplicity or auto")
-      ->capture_default_str();
-  render_cmd->add_option("--size", render_args.size, "Image size WIDTHxHEIGHT")
-      ->capture_default_str();
+  add_frame_options(render_cmd, render_args.frame, scene_list);
   render_cmd->add_option("--out", render_args.out, "PNG file to write")->capture_default_str();
   render_cmd->add_flag("--stats", render_args.stats, "Print the frame's timings and counters");
   render_cmd->add_flag("--show-volumes", render_args.show_volumes,
@@ -385,21 +395,13 @@ int main(int argc, char** argv) {
   VerifyArgs verify_args;
   CLI::App* verify_cmd = app.add_subcommand(
       "verify", "Render a scene and compare its shadows per pixel with the ray-traced reference");
-  verify_cmd
-      ->add_option("--scene", verify_args.scene,
-                   "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
-      ->capture_default_str();
-  verify_cmd->add_option("--method", verify_args.method, "zpass, zfail or auto")
-      ->capture_default_str();
-  verify_cmd
-      ->add_option("--generator", verify_args.generator, "standard, robust, multiplicity or auto")
-      ->capture_default_str();
-  verify_cmd->add_option("--size", verify_args.size, "Image size WIDTHxHEIGHT")
-      ->capture_default_str();
+  add_frame_options(verify_cmd, verify_args.frame, scene_list);
   verify_cmd->add_option("--diff", verify_args.diff,
                          "Write the mismatches over the scene to this PNG");
   verify_cmd->add_flag("--json", verify_args.json, "Print one JSON object");
-  verify_cmd->add_option("--frame", verify_args.frame, "Verify this frame of the scene's animation")
+  verify_cmd
+      ->add_option("--frame", verify_args.frame_number,
+                   "Verify this frame of the scene's animation")
       ->capture_default_str();
 
   try {
