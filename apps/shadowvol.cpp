@@ -17,6 +17,7 @@
 
 #include "core/topology.h"
 #include "core/volume.h"
+#include "gl/context.h"
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
@@ -353,6 +354,34 @@ int verify(const VerifyArgs& args) {
   return c.mismatched_outside_band == 0 ? 0 : 1;
 }
 
+int info(bool json) {
+  auto context = gl::Context::create_headless();
+  if (!context) return fail("cannot create an OpenGL context: " + context.error().message);
+  const gl::Info i = context->info();
+  const gl::Features& f = i.features;
+  const std::pair<const char*, bool> features[] = {{"depth_clamp", f.depth_clamp},
+                                                   {"two_sided_stencil", f.two_sided_stencil},
+                                                   {"stencil_wrap", f.stencil_wrap},
+                                                   {"geometry_shaders", f.geometry_shaders},
+                                                   {"occlusion_queries", f.occlusion_queries},
+                                                   {"depth_bounds", f.depth_bounds},
+                                                   {"integer_targets", f.integer_targets}};
+  if (json) {
+    nlohmann::json out{{"vendor", i.vendor},
+                       {"renderer", i.renderer},
+                       {"version", i.version},
+                       {"fallbacks", f.fallbacks}};
+    for (const auto& [name, has] : features) out["features"][name] = has;
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("OpenGL   %s\nrenderer %s\nvendor   %s\n", i.version.c_str(), i.renderer.c_str(),
+              i.vendor.c_str());
+  for (const auto& [name, has] : features) std::printf("  %-18s %s\n", name, has ? "yes" : "no");
+  for (const std::string& line : f.fallbacks) std::printf("fallback: %s\n", line.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -404,11 +433,17 @@ int main(int argc, char** argv) {
                    "Verify this frame of the scene's animation")
       ->capture_default_str();
 
+  bool info_json = false;
+  CLI::App* info_cmd = app.add_subcommand(
+      "info", "The OpenGL driver a headless context gets, and the features the backend uses");
+  info_cmd->add_flag("--json", info_json, "Print one JSON object");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  if (info_cmd->parsed()) return info(info_json);
   if (render_cmd->parsed()) return render(render_args);
   if (verify_cmd->parsed()) return verify(verify_args);
   if (inspect_cmd->parsed()) {

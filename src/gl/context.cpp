@@ -1,0 +1,113 @@
+#include "gl/context.h"
+
+#include <utility>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+namespace shadowvol::gl {
+namespace {
+
+constexpr const char* kInstall =
+    " (on Debian: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri for Mesa's llvmpipe, or "
+    "the GPU vendor's driver)";
+
+std::string egl_error(const char* what) {
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04x", static_cast<unsigned>(eglGetError()));
+  return std::string(what) + " failed with EGL error " + code + kInstall;
+}
+
+}  // namespace
+
+Expected<Context> Context::create_headless() {
+  if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless") &&
+      !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base"))
+    return make_error(std::string("no headless EGL platform is available") + kInstall);
+  EGLDisplay display =
+      eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  if (display == EGL_NO_DISPLAY) return make_error(egl_error("eglGetPlatformDisplay"));
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(display, &major, &minor)) return make_error(egl_error("eglInitialize"));
+  Context ctx;
+  ctx.display_ = display;
+  if (!eglBindAPI(EGL_OPENGL_API)) return make_error(egl_error("eglBindAPI(OpenGL)"));
+  // Surfaceless displays offer no window configs: the default EGL_WINDOW_BIT would find none.
+  const EGLint config_attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                                      EGL_OPENGL_BIT, EGL_NONE};
+  EGLConfig config = nullptr;
+  EGLint configs = 0;
+  if (!eglChooseConfig(display, config_attributes, &config, 1, &configs) || configs == 0)
+    return make_error(egl_error("eglChooseConfig (an OpenGL config)"));
+  const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                       4,
+                                       EGL_CONTEXT_MINOR_VERSION,
+                                       5,
+                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                       EGL_NONE};
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes);
+  if (context == EGL_NO_CONTEXT)
+    return make_error(egl_error("creating an OpenGL 4.5 core context"));
+  ctx.context_ = context;
+  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+    return make_error(egl_error("eglMakeCurrent without a surface"));
+  return ctx;
+}
+
+Context::Context(Context&& other) noexcept
+    : display_(std::exchange(other.display_, nullptr)),
+      context_(std::exchange(other.context_, nullptr)) {}
+
+Context& Context::operator=(Context&& other) noexcept {
+  if (this != &other) {
+    release();
+    display_ = std::exchange(other.display_, nullptr);
+    context_ = std::exchange(other.context_, nullptr);
+  }
+  return *this;
+}
+
+Context::~Context() { release(); }
+
+void Context::release() {
+  if (display_ == nullptr) return;
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (context_ != nullptr) eglDestroyContext(display_, context_);
+  eglTerminate(display_);
+  eglReleaseThread();
+  display_ = context_ = nullptr;
+}
+
+Info Context::info() const {
+  Info info;
+  auto text = [](GLenum name) {
+    const auto* s = reinterpret_cast<const char*>(glGetString(name));
+    return std::string(s != nullptr ? s : "?");
+  };
+  info.vendor = text(GL_VENDOR);
+  info.renderer = text(GL_RENDERER);
+  info.version = text(GL_VERSION);
+  const int version = epoxy_gl_version();  // 45 for 4.5
+  Features& f = info.features;
+  f.depth_clamp = version >= 32 || epoxy_has_gl_extension("GL_ARB_depth_clamp");
+  f.two_sided_stencil = version >= 20;
+  f.stencil_wrap = version >= 14;
+  f.geometry_shaders = version >= 32;
+  f.occlusion_queries = version >= 15;
+  f.depth_bounds = epoxy_has_gl_extension("GL_EXT_depth_bounds_test");
+  f.integer_targets = version >= 30;
+  if (!f.depth_clamp)
+    f.fallbacks.push_back("no depth clamp: an infinite projection keeps w = 0 vertices at depth 1");
+  if (!f.two_sided_stencil)
+    f.fallbacks.push_back("no two-sided stencil: volumes are drawn twice, once per facing");
+  if (!f.geometry_shaders)
+    f.fallbacks.push_back("no geometry shaders: volumes are built on the CPU only");
+  if (!f.depth_bounds)
+    f.fallbacks.push_back(
+        "no depth bounds test: tiles are not bounded by the volumes' depth range");
+  if (!f.occlusion_queries) f.fallbacks.push_back("no occlusion queries: no occlusion culling");
+  return info;
+}
+
+}  // namespace shadowvol::gl
