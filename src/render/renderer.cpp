@@ -172,7 +172,7 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
   }
   stats.ms_depth = ms_since(start);
 
-  // The near-plane rectangle in world space, for the per-object choice of method.
+  // The near-plane rectangle (eye-relative space), for the per-object choice of method.
   const glm::mat4 inv_view_proj = glm::inverse(view_proj);
   std::array<glm::vec3, 4> near_rect;
   for (int i = 0; i < 4; ++i) {
