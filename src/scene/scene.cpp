@@ -77,8 +77,8 @@ void add_demo_objects(Scene& s) {
   add_ground(s);
   s.objects.push_back(
       make_object("torus", make_bumpy_torus(96, 32, 0.9f, 0.3f),
-                  place({-1.7f, 1.2f, 0.2f}, 20.0f) *
-                      glm::rotate(glm::mat4(1.0f), glm::radians(70.0f), glm::vec3(1, 0, 0)),
+                  place({-1.7f, 1.5f, 0.2f}, 20.0f) *
+                      glm::rotate(glm::mat4(1.0f), glm::radians(-35.0f), glm::vec3(1, 0, 0)),
                   {0.85f, 0.35f, 0.25f}));
   s.objects.push_back(make_object("box", make_box(glm::vec3(-0.6f), glm::vec3(0.6f)),
                                   place({1.6f, 0.6f, 0.6f}, 30.0f), {0.3f, 0.55f, 0.85f}));
