@@ -181,6 +181,23 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
     near_rect[i] = glm::vec3(c) / c.w;
   }
 
+  // Each object's bounding sphere (eye-relative), once per frame, for the choice of method.
+  struct Sphere {
+    glm::vec3 centre;
+    float radius;
+  };
+  std::vector<Sphere> bounds(scene.objects.size());
+  if (options.method == Method::automatic)
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+      glm::vec3 lo(INFINITY), hi(-INFINITY);
+      for (const glm::vec3& p : scene.objects[o].topology->positions) {
+        const glm::vec3 q = glm::vec3(model[o] * glm::vec4(p, 1.0f));
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+      }
+      bounds[o] = {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f};
+    }
+
   // --- per light: volumes, counts ---
   frame.shadowed.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
   cache_.resize(scene.lights.size());
@@ -194,13 +211,7 @@ Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       const SceneObject& object = scene.objects[o];
       if (options.method == Method::automatic) {
-        glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (const glm::vec3& p : object.topology->positions) {
-          const glm::vec3 q = glm::vec3(model[o] * glm::vec4(p, 1.0f));
-          lo = glm::min(lo, q);
-          hi = glm::max(hi, q);
-        }
-        zfail[o] = may_shadow_near_plane((lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, near_rect,
+        zfail[o] = may_shadow_near_plane(bounds[o].centre, bounds[o].radius, near_rect,
                                          eye_relative(light, scene.camera.position));
       } else {
         zfail[o] = options.method == Method::zfail;

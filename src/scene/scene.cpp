@@ -14,8 +14,6 @@
 
 namespace shadowvol {
 
-glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
-
 glm::mat4 Camera::view_from_eye() const {
   return glm::lookAt(glm::vec3(0.0f), target - position, up);
 }

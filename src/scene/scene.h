@@ -57,8 +57,7 @@ struct Camera {
   float fov_y_degrees = 45.0f;
   float near = 0.1f;  // the far plane is at infinity
 
-  glm::mat4 view() const;
-  // The view's rotation alone: the view of eye-relative space, where the eye is the origin.
+  // The view of eye-relative space, where the eye is the origin: a rotation alone.
   // DESIGN.md "Numerics": geo-referenced models sit 1e5-1e6 units out, where float leaves
   // centimetre steps; subtracting the eye in double first keeps every pixel exact.
   glm::mat4 view_from_eye() const;
