@@ -18,7 +18,7 @@
 #include "core/topology.h"
 #include "core/volume.h"
 #include "gl/context.h"
-#include "render/renderer.h"
+#include "render/soft_renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
@@ -271,7 +271,7 @@ int render(const RenderArgs& args) {
   if (args.frames < 1)
     return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
 
-  Renderer renderer;
+  SoftRenderer renderer;
   Frame frame;
   StatusLine status;
   for (int i = 0; i < args.frames; ++i) {
@@ -318,7 +318,7 @@ int verify(const VerifyArgs& args) {
   if (args.frame_number < 0)
     return fail("--frame: " + std::to_string(args.frame_number) + " is not a frame number");
   const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
-  Renderer renderer;
+  SoftRenderer renderer;
   const Frame frame = renderer.render(scene, options);
   auto reference = trace_reference(scene, options.width, options.height);
   if (!reference) return fail(reference.error().message);

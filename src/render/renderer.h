@@ -1,9 +1,10 @@
-// shadowvol render: Renderer, one frame of a scene on the software rasterizer.
+// shadowvol render: Renderer, the interface of a backend that draws one frame of a scene.
 //
-// Owns: pass orchestration (depth, then per light: volumes -> counts -> lit where the count is
-// 0), the per-object choice of z-pass or z-fail, the shading, and FrameStats. Writes no files.
-// Papers: Intel "mainstream shadow volumes" and GPU Gems 3 ch. 11 (z-pass / z-fail, caps,
-// extrusion to infinity with depth clamp, per-object choice of the method).
+// Owns: what a frame is (image, per-pixel object and face, per-light shadow masks, stats) and
+// the options it is drawn with. Backends: render/soft_renderer.h (CPU) and gl/gl_renderer.h
+// (OpenGL); the decisions they share (matrices, z-pass or z-fail per object, volume cache,
+// shading) are in render/frame_plan.h. Papers: Intel "mainstream shadow volumes" and GPU Gems 3
+// ch. 11 (z-pass / z-fail, caps, extrusion to infinity, per-object choice of the method).
 #pragma once
 
 #include <cstddef>
@@ -14,7 +15,6 @@
 
 #include "core/expected.h"
 #include "core/volume.h"
-#include "render/volume_builder.h"
 #include "scene/scene.h"
 #include "soft/raster.h"
 
@@ -65,25 +65,18 @@ struct Frame {
 // Checks an options struct a person filled in: size within the rasterizer's limits.
 Expected<void> check_options(const RenderOptions& options);
 
+// A backend: draws frames of scenes. The software rasterizer (render/soft_renderer.h) and OpenGL
+// (gl/gl_renderer.h) implement it, and gl/backend.h picks one. Both take their decisions from
+// render/frame_plan.h, so they draw the same volumes by the same method.
 class Renderer {
  public:
+  virtual ~Renderer() = default;
   // Renders one frame. The scene's lights must pass check_light and the options check_options
-  // (asserted). Volume cache: a volume is built in its object's own space, so an object whose
-  // light, seen from the object (inverse transform times light), generator and need of caps are
-  // those of the last frame reuses last frame's volume; the others are rebuilt, in parallel.
-  Frame render(const Scene& scene, const RenderOptions& options);
-
- private:
-  struct CachedVolume {
-    // Held, not just pointed to: while cached, no other topology can take its address.
-    std::shared_ptr<const Topology> topology;
-    glm::vec4 light{0.0f};
-    VolumeOptions options;
-    VolumeBuffer volume;
-  };
-  VolumeBuilder builder_;
-  std::vector<std::vector<CachedVolume>> cache_;  // [light][object]
-  soft::Target target_;
+  // (asserted). Objects whose light, seen from the object, did not change since the last frame
+  // reuse their volume.
+  virtual Frame render(const Scene& scene, const RenderOptions& options) = 0;
+  // "soft" or "gl".
+  virtual std::string_view backend() const = 0;
 };
 
 }  // namespace shadowvol

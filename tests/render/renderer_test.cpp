@@ -3,7 +3,7 @@
 
 #include <tbb/global_control.h>
 
-#include "render/renderer.h"
+#include "render/soft_renderer.h"
 #include "scene/scene.h"
 
 namespace shadowvol {
@@ -16,7 +16,7 @@ TEST(Renderer, FrameDoesNotDependOnTheThreadCount) {
   std::vector<Frame> frames;
   for (int threads : {1, 2, 4}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    Renderer renderer;
+    SoftRenderer renderer;
     frames.push_back(renderer.render(*scene, options));
   }
   for (std::size_t i = 1; i < frames.size(); ++i) {
@@ -33,7 +33,7 @@ TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
   auto scene = builtin_scene("demo");
   ASSERT_TRUE(scene.ok());
   const RenderOptions options{160, 90, Method::automatic, Generator::automatic};
-  Renderer renderer;
+  SoftRenderer renderer;
   const Frame first = renderer.render(*scene, options);
   EXPECT_EQ(first.stats.volumes_built, 4);
   EXPECT_EQ(first.stats.volumes_reused, 0);
@@ -46,7 +46,7 @@ TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
   const Frame third = renderer.render(*scene, options);
   EXPECT_EQ(third.stats.volumes_built, 1);
   EXPECT_EQ(third.stats.volumes_reused, 3);
-  Renderer fresh;
+  SoftRenderer fresh;
   EXPECT_EQ(third.image.rgba, fresh.render(*scene, options).image.rgba);
   EXPECT_NE(third.image.rgba, first.image.rgba);
   // Moving the light rebuilds them all.

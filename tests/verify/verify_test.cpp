@@ -9,7 +9,7 @@
 
 #include <glm/ext/matrix_transform.hpp>
 
-#include "render/renderer.h"
+#include "render/soft_renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
@@ -23,7 +23,7 @@ namespace {
 constexpr int kWidth = 192, kHeight = 108;
 
 Comparison verify(const Scene& scene, Method method, Generator generator = Generator::automatic) {
-  Renderer renderer;
+  SoftRenderer renderer;
   const Frame frame = renderer.render(scene, {kWidth, kHeight, method, generator});
   auto reference = trace_reference(scene, kWidth, kHeight);
   EXPECT_TRUE(reference.ok()) << (reference ? "" : reference.error().message);

@@ -1,0 +1,190 @@
+#include "render/frame_plan.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+namespace shadowvol {
+namespace {
+
+// May any point of the near-plane rectangle lie in the shadow of something inside the sphere?
+// The points whose segment to the light meets the sphere form a cone (a cylinder for a
+// directional light); its intersection with the near rectangle is non-empty iff the sphere
+// meets the convex hull of the rectangle and the light (rectangle swept towards the light).
+// Tested plane by plane against that hull: conservative (may say yes when the answer is no).
+bool may_shadow_near_plane(const glm::vec3& centre, float radius,
+                           const std::array<glm::vec3, 4>& rect, const glm::vec4& light) {
+  const glm::vec3 inside = (rect[0] + rect[1] + rect[2] + rect[3]) * 0.25f;
+  const bool point = light.w != 0.0f;
+  const glm::vec3 l = glm::vec3(light) / (point ? light.w : 1.0f);
+  auto outside = [&](glm::vec3 n, glm::vec3 on, glm::vec3 reference) {
+    const float len = glm::length(n);
+    if (len < 1e-12f) return false;  // degenerate plane: no verdict
+    n /= len;
+    if (glm::dot(n, reference - on) > 0.0f) n = -n;  // outward: away from the reference point
+    return glm::dot(n, centre - on) > radius;
+  };
+  // The rectangle's plane bounds the hull on the side away from the light.
+  const glm::vec3 rect_normal = glm::cross(rect[1] - rect[0], rect[3] - rect[0]);
+  const glm::vec3 towards = point ? l - inside : l;
+  if (glm::dot(rect_normal, towards) == 0.0f) return true;  // light in the near plane
+  if (outside(rect_normal, rect[0], rect[0] + towards)) return false;
+  for (int i = 0; i < 4; ++i) {
+    const glm::vec3 a = rect[i], b = rect[(i + 1) % 4];
+    const glm::vec3 n = glm::cross(b - a, point ? l - a : l);
+    if (outside(n, a, inside + towards * 1e-3f)) return false;
+  }
+  return true;
+}
+
+// Draws the segment a-b (clip space, w >= 0 allowed at one end) over the image, blended: clipped
+// to the near plane (z >= -w) in homogeneous space, so that a ray to infinity ends at its
+// vanishing point, then stepped pixel by pixel within the viewport.
+void overlay_segment(Image& img, glm::vec4 a, glm::vec4 b, const glm::vec3& color) {
+  const float da = a.z + a.w, db = b.z + b.w;
+  if (da < 0.0f && db < 0.0f) return;
+  if (da < 0.0f) a = a + (b - a) * (da / (da - db));
+  if (db < 0.0f) b = b + (a - b) * (db / (db - da));
+  if (a.w <= 0.0f || b.w <= 0.0f) return;  // on the eye's plane: nothing to see
+  const glm::vec2 pa((a.x / a.w + 1.0f) * 0.5f * img.width, (1.0f - a.y / a.w) * 0.5f * img.height);
+  const glm::vec2 pb((b.x / b.w + 1.0f) * 0.5f * img.width, (1.0f - b.y / b.w) * 0.5f * img.height);
+  const float length = std::max(std::abs(pb.x - pa.x), std::abs(pb.y - pa.y));
+  const int steps = static_cast<int>(std::min(length, 8.0f * (img.width + img.height)));
+  for (int i = 0; i <= steps; ++i) {
+    const glm::vec2 p = steps == 0 ? pa : pa + (pb - pa) * (float(i) / float(steps));
+    const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
+    if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
+    std::uint8_t* px = &img.rgba[4 * (static_cast<std::size_t>(y) * img.width + x)];
+    for (int k = 0; k < 3; ++k)
+      px[k] = static_cast<std::uint8_t>(0.4f * px[k] + 0.6f * 255.0f * color[k]);
+  }
+}
+
+}  // namespace
+
+std::pair<std::int32_t, std::uint32_t> FramePlan::object_of(std::uint32_t id) const {
+  if (id >= first_id.back()) return {-1, 0};
+  const auto o = std::upper_bound(first_id.begin(), first_id.end(), id) - first_id.begin() - 1;
+  return {static_cast<std::int32_t>(o), id - first_id[static_cast<std::size_t>(o)]};
+}
+
+FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats) {
+  FramePlan plan;
+  const glm::mat4 view = scene.camera.view_from_eye();
+  const glm::mat4 proj = scene.camera.projection(static_cast<float>(options.width) /
+                                                 static_cast<float>(options.height));
+  plan.view_proj = proj * view;
+  plan.inv_view_proj = glm::inverse(plan.view_proj);
+  const std::size_t objects = scene.objects.size();
+  plan.model.resize(objects);
+  plan.weight_sign.resize(objects);
+  plan.first_id.assign(objects + 1, 0);
+  for (std::size_t o = 0; o < objects; ++o) {
+    const SceneObject& object = scene.objects[o];
+    plan.model[o] = eye_relative(object.transform, scene.camera.position);
+    plan.weight_sign[o] = glm::determinant(glm::mat3(object.transform)) < 0.0f ? -1 : 1;
+    plan.first_id[o + 1] =
+        plan.first_id[o] + static_cast<std::uint32_t>(object.mesh->triangle_count());
+  }
+  for (const SceneLight& light : scene.lights)
+    plan.lights.push_back(eye_relative(light.position, scene.camera.position));
+
+  // The near-plane rectangle and each object's bounding sphere, eye-relative, for `auto`.
+  std::array<glm::vec3, 4> near_rect;
+  for (int i = 0; i < 4; ++i) {
+    const glm::vec4 c =
+        plan.inv_view_proj * glm::vec4(i == 1 || i == 2 ? 1 : -1, i >= 2 ? 1 : -1, -1, 1);
+    near_rect[i] = glm::vec3(c) / c.w;
+  }
+  struct Sphere {
+    glm::vec3 centre;
+    float radius;
+  };
+  std::vector<Sphere> bounds(objects);
+  if (options.method == Method::automatic)
+    for (std::size_t o = 0; o < objects; ++o) {
+      glm::vec3 lo(INFINITY), hi(-INFINITY);
+      for (const glm::vec3& p : scene.objects[o].topology->positions) {
+        const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(p, 1.0f));
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+      }
+      bounds[o] = {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f};
+    }
+  plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    for (std::size_t o = 0; o < objects; ++o) {
+      const bool zfail =
+          options.method == Method::automatic
+              ? may_shadow_near_plane(bounds[o].centre, bounds[o].radius, near_rect, plan.lights[l])
+              : options.method == Method::zfail;
+      plan.zfail[l][o] = zfail;
+      (zfail ? stats.objects_zfail : stats.objects_zpass) += 1;
+    }
+  return plan;
+}
+
+std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
+                                      std::size_t light, Generator generator, FrameStats& stats) {
+  if (cache_.size() < scene.lights.size()) cache_.resize(scene.lights.size());
+  std::vector<Entry>& cache = cache_[light];
+  cache.resize(scene.objects.size());
+  std::vector<VolumeJob> jobs;
+  std::vector<bool> rebuilt(scene.objects.size(), false);
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    const SceneObject& object = scene.objects[o];
+    const glm::vec4 object_light(glm::inverse(glm::dmat4(object.transform)) *
+                                 glm::dvec4(scene.lights[light].position));
+    const VolumeOptions options{generator, static_cast<bool>(plan.zfail[light][o])};
+    Entry& c = cache[o];
+    if (c.topology == object.topology && c.light == object_light &&
+        c.options.generator == options.generator && c.options.caps == options.caps) {
+      ++stats.volumes_reused;
+      continue;
+    }
+    c.topology = object.topology;
+    c.light = object_light;
+    c.options = options;
+    jobs.push_back({c.topology.get(), object_light, options, &c.volume});
+    rebuilt[o] = true;
+    ++stats.volumes_built;
+  }
+  builder_.build(jobs);
+  return rebuilt;
+}
+
+void overlay_volumes(Image& image, const Scene& scene, const FramePlan& plan,
+                     const VolumeCache& volumes) {
+  const glm::vec3 colors[] = {{1.0f, 0.9f, 0.1f}, {0.2f, 0.9f, 1.0f}, {1.0f, 0.3f, 0.8f}};
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+      const glm::mat4 mvp = plan.view_proj * plan.model[o];
+      const PrimitiveList& sides = volumes.volume(l, o).sides;
+      for (std::size_t q = 0; q < sides.size(); ++q) {
+        const glm::vec4* v = &sides.vertices[q * kQuadCorners];  // u, u_inf, v_inf, v
+        const glm::vec4 u = mvp * v[0], u_inf = mvp * v[1], v_inf = mvp * v[2], w = mvp * v[3];
+        const glm::vec3& c = colors[l % 3];
+        overlay_segment(image, u, w, c);
+        overlay_segment(image, u, u_inf, c);
+        overlay_segment(image, w, v_inf, c);
+      }
+    }
+}
+
+namespace shading {
+
+glm::vec3 background(int y, int h) {
+  const float fade = 1.0f - float(y) / float(h);
+  return kBackgroundBottom + (kBackgroundTop - kBackgroundBottom) * fade;
+}
+
+float to_srgb(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace shading
+}  // namespace shadowvol

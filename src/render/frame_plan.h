@@ -1,0 +1,89 @@
+// shadowvol render: what every backend decides the same way before it draws a frame.
+//
+// Owns: the eye-relative matrices of a frame, the per-object, per-light choice of z-pass or
+// z-fail, the volume cache (volumes built on the CPU, rebuilt only when an object's light
+// changes), the mapping from a depth pass's face ids back to (object, face), and the shading
+// constants. Both backends call these, so that they draw the same volumes with the same method
+// and light them the same way; only the drawing differs.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/volume.h"
+#include "render/renderer.h"
+#include "render/volume_builder.h"
+#include "scene/scene.h"
+
+namespace shadowvol {
+
+struct FramePlan {
+  glm::mat4 view_proj{1.0f};      // of eye-relative space
+  glm::mat4 inv_view_proj{1.0f};
+  std::vector<glm::mat4> model;   // per object: its transform, eye-relative (DESIGN.md "Numerics")
+  std::vector<int> weight_sign;   // per object: -1 where the transform mirrors (volume.h)
+  std::vector<glm::vec4> lights;  // per light: its position, eye-relative
+  // The depth pass gives face f of object o the id first_id[o] + f; first_id has one entry more
+  // than there are objects, the total.
+  std::vector<std::uint32_t> first_id;
+  std::vector<std::vector<bool>> zfail;  // [light][object]: draw this volume by z-fail
+
+  // (object, face) of a depth-pass id, or object -1 when the id is past the last face.
+  std::pair<std::int32_t, std::uint32_t> object_of(std::uint32_t id) const;
+};
+
+// Decides everything above for this scene and these options. `auto` takes z-fail for an object
+// only where its bounding sphere may put part of the near-plane rectangle in its shadow
+// (GPU Gems 3 §11.2.3). Counts the objects of each method into stats.
+FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
+
+// The CPU-built volumes of the last frame, per light and object, in each object's own space.
+class VolumeCache {
+ public:
+  // Rebuilds (in parallel) the volumes whose object's light, seen from the object, generator or
+  // need of caps changed since the last call; counts built and reused into stats. Returns, per
+  // object, whether its volume was rebuilt.
+  std::vector<bool> update(const Scene& scene, const FramePlan& plan, std::size_t light,
+                           Generator generator, FrameStats& stats);
+  const VolumeBuffer& volume(std::size_t light, std::size_t object) const {
+    return cache_[light][object].volume;
+  }
+  std::size_t lights() const { return cache_.size(); }
+
+ private:
+  struct Entry {
+    // Held, not just pointed to: while cached, no other topology can take its address.
+    std::shared_ptr<const Topology> topology;
+    glm::vec4 light{0.0f};
+    VolumeOptions options;
+    VolumeBuffer volume;
+  };
+  VolumeBuilder builder_;
+  std::vector<std::vector<Entry>> cache_;  // [light][object]
+};
+
+// Draws the edges of every side quad of the cached volumes over the image (the silhouette edge
+// and its two rays to infinity, clipped at the near plane), one colour per light.
+void overlay_volumes(Image& image, const Scene& scene, const FramePlan& plan,
+                     const VolumeCache& volumes);
+
+// The shading both backends use (the OpenGL backend passes these to its shaders as uniforms):
+// ambient * albedo, plus per unshadowed light Lambert + Blinn-Phong, lit on the side the eye
+// sees; a vertical gradient behind everything; sRGB out.
+namespace shading {
+inline constexpr float kSpecular = 0.25f;
+inline constexpr float kShininess = 48.0f;
+inline constexpr glm::vec3 kBackgroundTop{0.26f, 0.28f, 0.22f};
+inline constexpr glm::vec3 kBackgroundBottom{0.16f, 0.18f, 0.22f};
+// The background at row y of h (row 0 at the top).
+glm::vec3 background(int y, int h);
+float to_srgb(float linear);
+}  // namespace shading
+
+}  // namespace shadowvol
