@@ -17,8 +17,9 @@
 
 #include "core/topology.h"
 #include "core/volume.h"
+#include "gl/backend.h"
 #include "gl/context.h"
-#include "render/soft_renderer.h"
+#include "render/renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
@@ -212,6 +213,9 @@ struct FrameArgs {
   std::string method = "auto";
   std::string generator = "auto";
   std::string size;
+  std::string backend = "soft";
+  std::string volumes = "cpu";
+  std::string counts = "auto";
 };
 
 void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_list) {
@@ -223,11 +227,26 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_
   cmd->add_option("--generator", args.generator, "standard, robust, multiplicity or auto")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--backend", args.backend,
+                  "soft (CPU rasterizer), gl (OpenGL 4.5, headless) or auto (gl if a context "
+                  "can be made, else soft)")
+      ->capture_default_str();
+  cmd->add_option("--volumes", args.volumes,
+                  "gl: volumes built on the cpu (any generator) or in a geometry shader on the gpu "
+                  "(standard or robust)")
+      ->capture_default_str();
+  cmd->add_option("--counts", args.counts,
+                  "gl: count volumes in the stencil buffer (weights other than +-1 drawn "
+                  "|weight| times), an additive R32F target, or auto (stencil where all weights "
+                  "are +-1)")
+      ->capture_default_str();
 }
 
 struct ResolvedFrame {
   Scene scene;
   RenderOptions options;
+  Backend backend;
+  gl::GlSettings gl;
 };
 
 // The scene and the options, every value checked, or the first problem as a message.
@@ -245,7 +264,23 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!size) return size.error();
   RenderOptions options{size->first, size->second, *method, *generator};
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
-  return ResolvedFrame{std::move(*scene), options};
+  auto backend = parse_backend(args.backend);
+  if (!backend) return make_error("--backend: " + backend.error().message);
+  auto volumes = gl::parse_volume_path(args.volumes);
+  if (!volumes) return make_error("--volumes: " + volumes.error().message);
+  auto counts = gl::parse_count_target(args.counts);
+  if (!counts) return make_error("--counts: " + counts.error().message);
+  const gl::GlSettings gl{*volumes, *counts};
+  if (auto ok = gl::check_settings(gl, *generator); !ok) return make_error(ok.error().message);
+  return ResolvedFrame{std::move(*scene), options, *backend, gl};
+}
+
+// The renderer the arguments ask for; says on stderr which one `auto` took.
+Expected<std::unique_ptr<Renderer>> make_frame_renderer(const ResolvedFrame& frame) {
+  auto made = make_renderer(frame.backend, frame.gl);
+  if (!made) return made.error();
+  if (!made->note.empty()) std::cerr << "shadowvol: " << made->note << "\n";
+  return std::move(made->renderer);
 }
 
 Expected<void> write_png(const std::string& path, const Image& img) {
@@ -271,28 +306,30 @@ int render(const RenderArgs& args) {
   if (args.frames < 1)
     return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
 
-  SoftRenderer renderer;
+  auto renderer = make_frame_renderer(*resolved);
+  if (!renderer) return fail(renderer.error().message);
   Frame frame;
   StatusLine status;
   for (int i = 0; i < args.frames; ++i) {
     if (args.frames > 1)
       status.show("frame " + std::to_string(i + 1) + " of " + std::to_string(args.frames));
-    frame = renderer.render(scene_at_frame(scene, i), options);
+    frame = (*renderer)->render(scene_at_frame(scene, i), options);
   }
   status.clear();
   const Image& img = frame.image;
   if (auto ok = write_png(args.out, img); !ok) return fail(ok.error().message);
   std::cout << "wrote " << args.out << " (" << scene.name << ", " << img.width << "x" << img.height
-            << ", " << to_string(options.method) << ")\n";
+            << ", " << to_string(options.method) << ", " << (*renderer)->backend() << ")\n";
   if (args.stats) {
     const FrameStats& s = frame.stats;
-    std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms\n", s.ms_depth,
-                s.ms_volumes, s.ms_counts, s.ms_shade);
+    std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms, read-back %.1f ms\n",
+                s.ms_depth, s.ms_volumes, s.ms_counts, s.ms_shade, s.ms_readback);
     std::printf(
         "  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d, "
         "volumes built %d, reused %d\n",
         s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.volumes_built,
         s.volumes_reused);
+    if ((*renderer)->backend() == "soft")
     std::printf(
         "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
         "or depth bounds,"
@@ -318,8 +355,10 @@ int verify(const VerifyArgs& args) {
   if (args.frame_number < 0)
     return fail("--frame: " + std::to_string(args.frame_number) + " is not a frame number");
   const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
-  SoftRenderer renderer;
-  const Frame frame = renderer.render(scene, options);
+  auto renderer = make_frame_renderer(*resolved);
+  if (!renderer) return fail(renderer.error().message);
+  const std::string backend((*renderer)->backend());
+  const Frame frame = (*renderer)->render(scene, options);
   auto reference = trace_reference(scene, options.width, options.height);
   if (!reference) return fail(reference.error().message);
   const Comparison c = compare(frame, *reference);
@@ -334,7 +373,7 @@ int verify(const VerifyArgs& args) {
     std::cout << nlohmann::json{{"scene", scene.name},
                                 {"method", std::string(to_string(options.method))},
                                 {"generator", std::string(to_string(options.generator))},
-                                {"backend", "soft"},
+                                {"backend", backend},
                                 {"frame", args.frame_number},
                                 {"width", options.width},
                                 {"height", options.height},
@@ -345,10 +384,10 @@ int verify(const VerifyArgs& args) {
               << "\n";
   } else {
     std::printf(
-        "%s, %s, soft backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
+        "%s, %s, %s backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
         "one-pixel band: %s\n",
-        scene.name.c_str(), std::string(to_string(options.method)).c_str(), options.width,
-        options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band,
+        scene.name.c_str(), std::string(to_string(options.method)).c_str(), backend.c_str(),
+        options.width, options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band,
         c.mismatched_outside_band == 0 ? "matches the reference" : "DIFFERS from the reference");
   }
   return c.mismatched_outside_band == 0 ? 0 : 1;
@@ -410,7 +449,7 @@ int main(int argc, char** argv) {
   for (std::string_view n : builtin_scene_names())
     scene_list += (scene_list.empty() ? "" : ", ") + std::string(n);
   CLI::App* render_cmd = app.add_subcommand(
-      "render", "Render a scene with exact shadows to a PNG (software rasterizer)");
+      "render", "Render a scene with exact shadows to a PNG");
   add_frame_options(render_cmd, render_args.frame, scene_list);
   render_cmd->add_option("--out", render_args.out, "PNG file to write")->capture_default_str();
   render_cmd->add_flag("--stats", render_args.stats, "Print the frame's timings and counters");

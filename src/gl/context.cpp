@@ -79,7 +79,9 @@ void Context::release() {
   display_ = context_ = nullptr;
 }
 
-Info Context::info() const {
+Info Context::info() const { return query_info(); }
+
+Info query_info() {
   Info info;
   auto text = [](GLenum name) {
     const auto* s = reinterpret_cast<const char*>(glGetString(name));

@@ -31,6 +31,9 @@ struct Info {
   Features features;
 };
 
+// What the driver of the current context offers.
+Info query_info();
+
 class Context {
  public:
   // An OpenGL 4.5 core context with no window, current on the calling thread.

@@ -45,6 +45,7 @@ struct Image {
 
 struct FrameStats {
   double ms_depth = 0, ms_volumes = 0, ms_counts = 0, ms_shade = 0;
+  double ms_readback = 0;  // gl: copying ids, masks and the image to memory (soft: none)
   std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
   std::size_t volume_primitives = 0;          // over all lights
   int objects_zpass = 0, objects_zfail = 0;   // over all lights

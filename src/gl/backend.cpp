@@ -1,0 +1,55 @@
+#include "gl/backend.h"
+
+#include "render/soft_renderer.h"
+
+namespace shadowvol {
+
+std::string_view to_string(Backend backend) {
+  switch (backend) {
+    case Backend::soft:
+      return "soft";
+    case Backend::gl:
+      return "gl";
+    case Backend::automatic:
+      return "auto";
+  }
+  return "unknown";
+}
+
+Expected<Backend> parse_backend(std::string_view name) {
+  for (Backend b : {Backend::soft, Backend::gl, Backend::automatic})
+    if (name == to_string(b)) return b;
+  return make_error("unknown backend '" + std::string(name) + "': expected soft, gl or auto");
+}
+
+namespace {
+
+Expected<std::unique_ptr<Renderer>> make_gl(const gl::GlSettings& settings) {
+  auto context = gl::Context::create_headless();
+  if (!context) return make_error("cannot create an OpenGL context: " + context.error().message);
+  auto renderer = gl::GlRenderer::create(settings, std::move(*context));
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<Renderer>(std::move(*renderer));
+}
+
+}  // namespace
+
+Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_settings) {
+  if (backend == Backend::soft) {
+    if (gl_settings.volumes == gl::VolumePath::gpu)
+      return make_error("geometry-shader volumes (--volumes gpu) need the gl backend");
+    return MadeRenderer{std::make_unique<SoftRenderer>(), ""};
+  }
+  auto gl = make_gl(gl_settings);
+  if (gl) {
+    std::string note = backend == Backend::automatic ? "backend auto: gl (an OpenGL 4.5 context was made)" : "";
+    return MadeRenderer{std::move(*gl), note};
+  }
+  if (backend == Backend::gl) return gl.error();
+  if (gl_settings.volumes == gl::VolumePath::gpu)
+    return make_error("--volumes gpu needs the gl backend, and " + gl.error().message);
+  return MadeRenderer{std::make_unique<SoftRenderer>(),
+                      "backend auto: soft, since " + gl.error().message};
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,31 @@
+// shadowvol gl: choosing a backend by name, the one place that knows both.
+//
+// Owns: "soft", "gl" and "auto" (gl where an OpenGL 4.5 context can be made, else soft, and a
+// line saying which and why), and making the renderer, headless.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "core/expected.h"
+#include "gl/gl_renderer.h"
+#include "render/renderer.h"
+
+namespace shadowvol {
+
+enum class Backend : std::uint8_t { soft, gl, automatic };
+std::string_view to_string(Backend backend);
+Expected<Backend> parse_backend(std::string_view name);
+
+struct MadeRenderer {
+  std::unique_ptr<Renderer> renderer;
+  std::string note;  // for `auto`: which backend it took and why; else empty
+};
+
+// The renderer of `backend`. gl makes a headless context (gl/context.h) and fails with what to
+// install when it cannot; auto then takes soft. `gl_settings` apply to gl only; asking for gpu
+// volumes with the soft backend is an error.
+Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_settings = {});
+
+}  // namespace shadowvol

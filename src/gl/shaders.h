@@ -1,0 +1,258 @@
+// shadowvol gl: the GLSL of the OpenGL backend (gl_renderer.cpp is its only reader).
+//
+// Why each piece is as it is:
+//   - Every position reaches clip space through to_clip() on a vec4, in every stage, so that a
+//     light cap and the surface it lies on get bit-identical depths (GPU Gems 3 §11.3.2: "transform
+//     the actual rendered scene geometry exactly like the geometry in the shadow volume shader").
+//   - Uniform locations are fixed in the source; gl_renderer.cpp names them in one enum.
+//   - The geometry shader decides a face's facing from its three vertices symmetrically (three
+//     normals, three light directions), so that a face gets the same answer as itself and as a
+//     neighbour (GPU Gems 3 listing 11-1), and a face of zero area gets 0 and casts nothing.
+#pragma once
+
+namespace shadowvol::gl::glsl {
+
+// Uniform locations shared by the programs.
+inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLight = 4,
+                     kRobust = 5, kCaps = 6, kEmit = 7, kAlbedo = 8, kRadiance = 9,
+                     kCountTexture = 10, kFirstId = 11, kAmbient = 12, kSpecular = 13,
+                     kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17;
+
+// What the volume geometry shader emits in one draw (uniform kEmit).
+inline constexpr int kEmitPositive = 0;  // every primitive of weight +1 (stencil, first draw)
+inline constexpr int kEmitNegative = 1;  // back faces' light caps, weight -1, own vertex order
+inline constexpr int kEmitWeighted = 2;  // everything, each with its signed weight (additive)
+
+#define SHADOWVOL_GLSL_PRELUDE                     \
+  "#version 450 core\n"                            \
+  "layout(location = 0) uniform mat4 mvp;\n"      \
+  "vec4 to_clip(vec4 p) {\n"                       \
+  "  precise vec4 c = mvp * p;\n"                  \
+  "  return c;\n"                                  \
+  "}\n"
+
+// Scene geometry: the depth-and-id pass and the lit passes.
+inline constexpr const char* kSurfaceVertex = SHADOWVOL_GLSL_PRELUDE R"(
+layout(location = 0) in vec4 position;  // w = 1
+layout(location = 1) uniform mat4 model;  // eye-relative
+out Surface { vec3 eye_position; } surface;
+invariant gl_Position;
+void main() {
+  surface.eye_position = (model * position).xyz;
+  gl_Position = to_clip(position);
+}
+)";
+
+// With geometry-shader volumes the scene passes through a geometry shader too: a driver may
+// place a geometry shader's output on the screen with other rounding than a vertex shader's
+// (llvmpipe does), and a light cap must get the depth of the surface it lies on.
+inline constexpr const char* kSurfaceGeometry = R"(#version 450 core
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+in Surface { vec3 eye_position; } vertices[];
+out Surface { vec3 eye_position; } surface;
+invariant gl_Position;
+void main() {
+  for (int i = 0; i < 3; ++i) {
+    gl_Position = gl_in[i].gl_Position;
+    gl_PrimitiveID = gl_PrimitiveIDIn;
+    surface.eye_position = vertices[i].eye_position;
+    EmitVertex();
+  }
+  EndPrimitive();
+}
+)";
+
+// Depth pass: the face id (0 = background) and the ambient term.
+inline constexpr const char* kDepthFragment = R"(#version 450 core
+layout(location = 11) uniform uint first_id;
+layout(location = 8) uniform vec3 albedo;
+layout(location = 12) uniform vec3 ambient;
+layout(location = 0) out uint id;
+layout(location = 1) out vec4 color;
+void main() {
+  id = first_id + uint(gl_PrimitiveID) + 1u;
+  color = vec4(ambient * albedo, 1.0);
+}
+)";
+
+// One light where the count is 0: by the stencil test, or by reading the additive count target.
+inline constexpr const char* kLitFragment = R"(#version 450 core
+in Surface { vec3 eye_position; } surface;
+layout(std430, binding = 0) readonly buffer FaceNormals { vec4 normals[]; };
+layout(location = 2) uniform mat3 normal_matrix;
+layout(location = 8) uniform vec3 albedo;
+layout(location = 4) uniform vec4 light;  // eye-relative
+layout(location = 9) uniform vec3 radiance;
+layout(location = 10) uniform bool count_texture;
+layout(location = 13) uniform float specular;
+layout(location = 14) uniform float shininess;
+layout(binding = 0) uniform sampler2D counts;
+layout(location = 1) out vec4 color;
+void main() {
+  if (count_texture && texelFetch(counts, ivec2(gl_FragCoord.xy), 0).r != 0.0) discard;
+  vec3 n = normal_matrix * normals[gl_PrimitiveID].xyz;
+  n = length(n) > 0.0 ? normalize(n) : vec3(0.0, 1.0, 0.0);
+  vec3 eye_position = surface.eye_position;
+  vec3 to_eye = normalize(-eye_position);  // the eye is the origin
+  if (dot(n, to_eye) < 0.0) n = -n;         // two-sided: light the side we see
+  vec3 to_light = normalize(light.w != 0.0 ? light.xyz / light.w - eye_position : light.xyz);
+  float lambert = dot(n, to_light);
+  if (lambert <= 0.0) discard;
+  float spec = pow(max(0.0, dot(n, normalize(to_light + to_eye))), shininess);
+  color = vec4(radiance * (albedo * lambert + vec3(specular * spec)), 0.0);
+}
+)";
+
+// Volumes built on the CPU: one signed weight per triangle.
+inline constexpr const char* kVolumeVertex = SHADOWVOL_GLSL_PRELUDE R"(
+layout(location = 0) in vec4 position;  // w = 0 at infinity
+layout(location = 1) in int weight;
+flat out int primitive_weight;
+invariant gl_Position;
+void main() {
+  primitive_weight = weight;
+  gl_Position = to_clip(position);
+}
+)";
+
+// Volumes built on the GPU: the vertex shader hands on object-space positions, and clip-space
+// ones computed exactly as the depth pass's vertex shader does (a geometry shader may round
+// the same product differently).
+inline constexpr const char* kPassVertex = SHADOWVOL_GLSL_PRELUDE R"(
+layout(location = 0) in vec4 position;  // w = 0 marks "no neighbour"
+out vec4 object_position;
+invariant gl_Position;
+void main() {
+  object_position = position;
+  gl_Position = to_clip(position);
+}
+)";
+
+// GPU Gems 3 listing 11-1, in the mesh's own space, for the standard and robust generators.
+inline constexpr const char* kVolumeGeometry = SHADOWVOL_GLSL_PRELUDE R"(
+layout(triangles_adjacency) in;
+layout(triangle_strip, max_vertices = 18) out;
+in vec4 object_position[];
+layout(location = 4) uniform vec4 light;  // object space
+layout(location = 5) uniform bool robust;  // false: standard, front faces only
+layout(location = 6) uniform bool caps;    // z-fail
+layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted
+flat out int primitive_weight;
+invariant gl_Position;
+
+int facing(vec4 a, vec4 b, vec4 c) {
+  precise vec3 na = cross(b.xyz - a.xyz, c.xyz - a.xyz);
+  precise vec3 nb = cross(c.xyz - b.xyz, a.xyz - b.xyz);
+  precise vec3 nc = cross(a.xyz - c.xyz, b.xyz - c.xyz);
+  precise float da = dot(na, light.xyz - light.w * a.xyz);
+  precise float db = dot(nb, light.xyz - light.w * b.xyz);
+  precise float dc = dot(nc, light.xyz - light.w * c.xyz);
+  if (da > 0.0 || db > 0.0 || dc > 0.0) return 1;
+  if (da < 0.0 || db < 0.0 || dc < 0.0) return -1;
+  return 0;
+}
+
+vec4 at_infinity(vec4 p) { return vec4(light.w * p.xyz - light.xyz, 0.0); }
+
+// A vertex of the mesh (index i of the input), with the vertex shader's clip position.
+void emit_vertex(int i, int weight) {
+  primitive_weight = weight;
+  gl_Position = gl_in[i].gl_Position;
+  EmitVertex();
+}
+// The extrusion to infinity of vertex i.
+void emit_infinite(int i, int weight) {
+  primitive_weight = weight;
+  gl_Position = to_clip(at_infinity(object_position[i]));
+  EmitVertex();
+}
+
+
+void main() {
+  vec4 p[6];
+  for (int i = 0; i < 6; ++i) p[i] = object_position[i];
+  int f = facing(p[0], p[2], p[4]);
+  if (f == 0 || (!robust && f < 0)) return;
+  if (caps) {
+    // The light cap keeps its own vertex order (the depth pass's), whatever its sign: a
+    // reversed triangle may rasterize to other depths. Hence the separate kEmitNegative draw.
+    if (emit == 2 || (emit == 0 && f > 0) || (emit == 1 && f < 0)) {
+      emit_vertex(0, f);
+      emit_vertex(2, f);
+      emit_vertex(4, f);
+      EndPrimitive();
+    }
+    // The dark cap, weight -f: reversed where a draw takes only weight +1. (A directional
+    // light's dark caps collapse to a point: none.)
+    if (emit != 1 && light.w != 0.0) {
+      bool reverse = emit == 0 && f > 0;
+      int weight = emit == 0 ? 1 : -f;
+      emit_infinite(0, weight);
+      emit_infinite(reverse ? 4 : 2, weight);
+      emit_infinite(reverse ? 2 : 4, weight);
+      EndPrimitive();
+    }
+  }
+  if (emit == 1) return;
+  for (int i = 0; i < 3; ++i) {
+    int a = 2 * i, neighbour = 2 * i + 1, b = (2 * i + 2) % 6;
+    // Open, non-manifold and inconsistently wound edges have no neighbour (w = 0): every face
+    // on them casts its own side. Otherwise a side where the two faces' facings differ.
+    if (p[neighbour].w != 0.0 && facing(p[a], p[neighbour], p[b]) == f) continue;
+    // The side quad (a, a_inf, b_inf, b) of weight f, as a strip a, a_inf, b, b_inf.
+    if (emit == 0 && f < 0) { int t = a; a = b; b = t; }
+    int weight = emit == 0 ? 1 : f;
+    emit_vertex(a, weight);
+    emit_infinite(a, weight);
+    emit_vertex(b, weight);
+    emit_infinite(b, weight);
+    EndPrimitive();
+  }
+}
+)";
+
+// Counts: additive target (R32F, blended ONE + ONE) or, with colour writes off, the stencil.
+// z-pass adds a front face's weight, z-fail subtracts it (kRuleSign), back faces the opposite.
+inline constexpr const char* kCountFragment = R"(#version 450 core
+flat in int primitive_weight;
+layout(location = 3) uniform float rule_sign;
+layout(location = 0) out float count;
+void main() { count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0); }
+)";
+
+// The frame out: lit colour or background, to sRGB.
+inline constexpr const char* kFullscreenVertex = R"(#version 450 core
+void main() {
+  vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+inline constexpr const char* kResolveFragment = R"(#version 450 core
+layout(binding = 0) uniform sampler2D accumulated;
+layout(binding = 1) uniform usampler2D ids;
+layout(location = 15) uniform vec3 background_top;
+layout(location = 16) uniform vec3 background_bottom;
+layout(location = 17) uniform int height;
+layout(location = 0) out vec4 color;
+float to_srgb(float c) {
+  c = clamp(c, 0.0, 1.0);
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+}
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec3 c;
+  if (texelFetch(ids, p, 0).r == 0u) {
+    float row = float(height - 1 - p.y);  // row 0 at the top, as in the software backend
+    c = background_bottom + (background_top - background_bottom) * (1.0 - row / float(height));
+  } else {
+    c = texelFetch(accumulated, p, 0).rgb;
+  }
+  color = vec4(to_srgb(c.r), to_srgb(c.g), to_srgb(c.b), 1.0);
+}
+)";
+
+#undef SHADOWVOL_GLSL_PRELUDE
+
+}  // namespace shadowvol::gl::glsl
