@@ -458,7 +458,8 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     } else {
       glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
-      glClearNamedFramebufferfi(t.scene.get(), GL_STENCIL, 0, 0.0f, 0);
+      const GLint no_count = 0;
+      glClearNamedFramebufferiv(t.scene.get(), GL_STENCIL, 0, &no_count);
       glEnable(GL_STENCIL_TEST);
       glStencilFunc(GL_ALWAYS, 0, 0xFF);
       glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);

@@ -1,15 +1,18 @@
 // DESIGN.md's invariant, as tests: every built-in scene with every method, and real meshes on
-// their default stage, against the ray-traced reference. The reference decides; nothing here
-// compares against an earlier output of our own rasterizer.
+// their default stage, against the ray-traced reference, on every backend (the software one,
+// and OpenGL with volumes from the CPU or a geometry shader, counted in the stencil buffer or an
+// additive target). The reference decides; nothing here compares against an earlier output of
+// our own rasterizer. The parity test at the end compares the two backends with each other.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <tuple>
 
 #include <glm/ext/matrix_transform.hpp>
 
-#include "render/soft_renderer.h"
+#include "gl/backend.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
@@ -22,23 +25,45 @@ namespace {
 // Small images keep the suite quick under the sanitizers; every pixel is still compared.
 constexpr int kWidth = 192, kHeight = 108;
 
-Comparison verify(const Scene& scene, Method method, Generator generator = Generator::automatic) {
-  SoftRenderer renderer;
-  const Frame frame = renderer.render(scene, {kWidth, kHeight, method, generator});
+// A backend and its settings, as `--backend --volumes --counts` choose them.
+struct Variant {
+  const char* name;
+  Backend backend;
+  gl::GlSettings gl;
+};
+const Variant kSoft{"soft", Backend::soft, {}};
+const Variant kGlCpu{"gl_cpu", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::automatic}};
+const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarget::automatic}};
+const Variant kGlAdditive{"gl_additive", Backend::gl,
+                          {gl::VolumePath::cpu, gl::CountTarget::additive}};
+const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlAdditive};
+
+Frame render(const Variant& variant, const Scene& scene, const RenderOptions& options) {
+  auto made = make_renderer(variant.backend, variant.gl);
+  EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
+  if (!made) return {};
+  EXPECT_EQ(made->renderer->backend(), variant.backend == Backend::soft ? "soft" : "gl");
+  return made->renderer->render(scene, options);
+}
+
+Comparison verify(const Scene& scene, Method method, Generator generator = Generator::automatic,
+                  const Variant& variant = kSoft) {
+  const Frame frame = render(variant, scene, {kWidth, kHeight, method, generator});
+  if (frame.object.empty()) return {};
   auto reference = trace_reference(scene, kWidth, kHeight);
   EXPECT_TRUE(reference.ok()) << (reference ? "" : reference.error().message);
   if (!reference) return {};
   return compare(frame, *reference);
 }
 
-using SceneMethod = std::tuple<std::string, Method>;
+using SceneMethod = std::tuple<std::string, Method, Variant>;
 class BuiltinScenes : public ::testing::TestWithParam<SceneMethod> {};
 
 TEST_P(BuiltinScenes, MatchTheReferenceOutsideTheOnePixelBand) {
-  const auto& [name, method] = GetParam();
+  const auto& [name, method, variant] = GetParam();
   auto scene = builtin_scene(name);
   ASSERT_TRUE(scene.ok()) << scene.error().message;
-  const Comparison c = verify(*scene, method);
+  const Comparison c = verify(*scene, method, Generator::automatic, variant);
   EXPECT_GT(c.pixels_compared, std::size_t{kWidth * kHeight / 4});
   if (name == "camera-in-shadow" && method == Method::zpass) {
     // The eye sits inside a shadow volume: z-pass counts from the eye and must get it wrong.
@@ -52,10 +77,12 @@ INSTANTIATE_TEST_SUITE_P(
     AllMethods, BuiltinScenes,
     ::testing::Combine(::testing::Values("demo", "camera-in-shadow", "light-in-view", "directional",
                                          "nonmanifold"),
-                       ::testing::Values(Method::zpass, Method::zfail, Method::automatic)),
+                       ::testing::Values(Method::zpass, Method::zfail, Method::automatic),
+                       ::testing::ValuesIn(kVariants)),
     [](const auto& info) {
-      std::string name =
-          std::get<0>(info.param) + "_" + std::string(to_string(std::get<1>(info.param)));
+      std::string name = std::get<0>(info.param) + "_" +
+                         std::string(to_string(std::get<1>(info.param))) + "_" +
+                         std::get<2>(info.param).name;
       for (char& ch : name)
         if (ch == '-') ch = '_';
       return name;
@@ -64,19 +91,43 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(BuiltinScenes, EveryGeneratorMatchesOnTheNonManifoldScene) {
   auto scene = builtin_scene("nonmanifold");
   ASSERT_TRUE(scene.ok());
-  for (Generator g : {Generator::robust, Generator::multiplicity})
-    for (Method m : {Method::zpass, Method::zfail}) {
-      const Comparison c = verify(*scene, m, g);
-      EXPECT_EQ(c.mismatched_outside_band, 0u) << to_string(g) << " " << to_string(m);
+  // Multiplicity has weights of 2 here: the gl backend counts them in the additive target, or
+  // in the stencil buffer by drawing those triangles twice.
+  const Variant gl_stencil{"gl_stencil", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::stencil}};
+  for (const Variant& v : {kSoft, kGlCpu, kGlGpu, kGlAdditive, gl_stencil})
+    for (Generator g : {Generator::standard, Generator::robust, Generator::multiplicity}) {
+      if (g == Generator::standard || (g == Generator::multiplicity && v.gl.volumes == gl::VolumePath::gpu))
+        continue;
+      for (Method m : {Method::zpass, Method::zfail}) {
+        const Comparison c = verify(*scene, m, g, v);
+        EXPECT_GT(c.pixels_compared, 0u);
+        EXPECT_EQ(c.mismatched_outside_band, 0u) << v.name << " " << to_string(g) << " " << to_string(m);
+      }
     }
+}
+
+// The geometry shader's standard generator (front faces only) on closed meshes.
+TEST(BuiltinScenes, GeometryShaderStandardVolumesMatchOnClosedMeshes) {
+  for (const char* name : {"demo", "directional"}) {
+    auto scene = builtin_scene(name);
+    ASSERT_TRUE(scene.ok());
+    std::erase_if(scene->objects, [](const SceneObject& o) { return !o.topology->report.closed_manifold; });
+    for (Method m : {Method::zpass, Method::zfail}) {
+      const Comparison c = verify(*scene, m, Generator::standard, kGlGpu);
+      EXPECT_GT(c.pixels_compared, 0u);
+      EXPECT_EQ(c.mismatched_outside_band, 0u) << name << " " << to_string(m);
+    }
+  }
 }
 
 TEST(BuiltinScenes, AnimatedFramesMatchTheReference) {
   auto scene = builtin_scene("demo");
   ASSERT_TRUE(scene.ok());
-  for (int f : {7, 45})
-    for (Method m : {Method::zpass, Method::zfail})
-      EXPECT_EQ(verify(scene_at_frame(*scene, f), m).mismatched_outside_band, 0u) << f;
+  for (const Variant& v : kVariants)
+    for (int f : {7, 45})
+      for (Method m : {Method::zpass, Method::zfail})
+        EXPECT_EQ(verify(scene_at_frame(*scene, f), m, Generator::automatic, v).mismatched_outside_band, 0u)
+            << v.name << " " << f;
 }
 
 TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
@@ -90,8 +141,10 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
 TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
   auto scene = load_scene_file(std::string(SHADOWVOL_SOURCE_DIR) + "/scenes/knot.json");
   ASSERT_TRUE(scene.ok()) << scene.error().message;
-  for (Method m : {Method::zpass, Method::zfail, Method::automatic})
-    EXPECT_EQ(verify(*scene, m).mismatched_outside_band, 0u) << to_string(m);
+  for (const Variant& v : kVariants)
+    for (Method m : {Method::zpass, Method::zfail, Method::automatic})
+      EXPECT_EQ(verify(*scene, m, Generator::automatic, v).mismatched_outside_band, 0u)
+          << v.name << " " << to_string(m);
 }
 
 // Geo-referenced data sits 1e5-1e6 units from the origin, where float steps are centimetres:
@@ -107,11 +160,12 @@ TEST(SceneFiles, FarFromTheOriginStillMatchesTheReference) {
     for (SceneLight& l : far.lights) l.position += glm::vec4(offset * l.position.w, 0.0f);
     far.camera.position += offset;
     far.camera.target += offset;
-    for (Method m : {Method::zpass, Method::zfail}) {
-      const Comparison c = verify(far, m);
-      EXPECT_GT(c.pixels_compared, std::size_t{kWidth * kHeight / 2});
-      EXPECT_EQ(c.mismatched_outside_band, 0u) << distance << " " << to_string(m);
-    }
+    for (const Variant& v : kVariants)
+      for (Method m : {Method::zpass, Method::zfail}) {
+        const Comparison c = verify(far, m, Generator::automatic, v);
+        EXPECT_GT(c.pixels_compared, std::size_t{kWidth * kHeight / 2});
+        EXPECT_EQ(c.mismatched_outside_band, 0u) << v.name << " " << distance << " " << to_string(m);
+      }
   }
 }
 
@@ -122,11 +176,12 @@ TEST_P(RealMeshes, OnTheirDefaultStageMatchTheReference) {
   auto loaded = load_mesh(path);
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;
   const Scene scene = default_stage(path.filename().string(), std::move(loaded->mesh));
-  for (Method m : {Method::zpass, Method::zfail}) {
-    const Comparison c = verify(scene, m);
-    EXPECT_GT(c.pixels_compared, 1000u);
-    EXPECT_EQ(c.mismatched_outside_band, 0u) << to_string(m);
-  }
+  for (const Variant& v : kVariants)
+    for (Method m : {Method::zpass, Method::zfail}) {
+      const Comparison c = verify(scene, m, Generator::automatic, v);
+      EXPECT_GT(c.pixels_compared, 1000u);
+      EXPECT_EQ(c.mismatched_outside_band, 0u) << v.name << " " << to_string(m);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Files, RealMeshes,
@@ -140,6 +195,44 @@ INSTANTIATE_TEST_SUITE_P(Files, RealMeshes,
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return n;
                          });
+
+// Parity: the two backends agree on what each pixel shows and whether it is lit, except within
+// one pixel of a boundary (of a shadow or of a surface) in the software frame. Any difference
+// at all is reported.
+TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
+  for (std::string_view name : builtin_scene_names()) {
+    auto scene = builtin_scene(name);
+    ASSERT_TRUE(scene.ok());
+    const RenderOptions options{kWidth, kHeight, Method::automatic, Generator::automatic};
+    const Frame soft = render(kSoft, *scene, options);
+    for (const Variant& v : {kGlCpu, kGlGpu}) {
+      const Frame gl = render(v, *scene, options);
+      ASSERT_EQ(gl.shadowed.size(), soft.shadowed.size());
+      std::size_t differ = 0, outside_band = 0;
+      for (std::size_t l = 0; l < soft.shadowed.size(); ++l)
+        for (int y = 0; y < kHeight; ++y)
+          for (int x = 0; x < kWidth; ++x) {
+            const std::size_t p = static_cast<std::size_t>(y) * kWidth + x;
+            if (soft.object[p] == gl.object[p] && soft.shadowed[l][p] == gl.shadowed[l][p]) continue;
+            ++differ;
+            bool band = false;
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                const int qx = x + dx, qy = y + dy;
+                if (qx < 0 || qy < 0 || qx >= kWidth || qy >= kHeight) continue;
+                const std::size_t q = static_cast<std::size_t>(qy) * kWidth + qx;
+                band = band || soft.object[q] != soft.object[p] ||
+                       soft.shadowed[l][q] != soft.shadowed[l][p];
+              }
+            outside_band += !band;
+          }
+      EXPECT_EQ(outside_band, 0u) << name << " " << v.name << ": " << differ << " pixels differ";
+      if (differ > 0)
+        std::cout << "[ parity   ] " << name << ", soft vs " << v.name << ": " << differ
+                  << " pixels differ, all within the one-pixel band\n";
+    }
+  }
+}
 
 }  // namespace
 

@@ -1,0 +1,77 @@
+// The OpenGL backend's own behaviour: its settings, its volume cache, and that it leaves no
+// OpenGL error behind. (Its shadows are verified against the reference in verify_test.cpp.)
+#include <gtest/gtest.h>
+
+#include "gl/backend.h"
+#include "gl/objects.h"
+#include "scene/scene.h"
+
+namespace shadowvol::gl {
+namespace {
+
+std::unique_ptr<GlRenderer> make(GlSettings settings) {
+  auto context = Context::create_headless();
+  EXPECT_TRUE(context.ok()) << context.error().message;
+  auto renderer = GlRenderer::create(settings, std::move(*context));
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  return renderer ? std::move(*renderer) : nullptr;
+}
+
+TEST(GlRenderer, ReusesUploadedVolumesAndLeavesNoGlError) {
+  auto scene = builtin_scene("demo");
+  ASSERT_TRUE(scene.ok());
+  auto renderer = make({});
+  ASSERT_TRUE(renderer);
+  const RenderOptions options{160, 90, Method::automatic, Generator::automatic};
+  const Frame first = renderer->render(*scene, options);
+  EXPECT_EQ(take_error(), "");
+  EXPECT_EQ(first.stats.volumes_built, 4);
+  const Frame second = renderer->render(*scene, options);
+  EXPECT_EQ(second.stats.volumes_built, 0);
+  EXPECT_EQ(second.stats.volumes_reused, 4);
+  EXPECT_EQ(second.image.rgba, first.image.rgba);
+  EXPECT_EQ(second.shadowed, first.shadowed);
+  // Moving the box rebuilds and re-uploads its volume alone; the frame equals a fresh one's.
+  scene->objects[2].transform[3] += glm::vec4(0.3f, 0.0f, 0.2f, 0.0f);
+  const Frame third = renderer->render(*scene, options);
+  EXPECT_EQ(third.stats.volumes_built, 1);
+  EXPECT_NE(third.shadowed, first.shadowed);
+  renderer.reset();
+  auto fresh = make({});
+  ASSERT_TRUE(fresh);
+  EXPECT_EQ(fresh->render(*scene, options).shadowed, third.shadowed);
+}
+
+TEST(GlRenderer, SwitchingVolumePathsKeepsTheShadows) {
+  auto scene = builtin_scene("nonmanifold");
+  ASSERT_TRUE(scene.ok());
+  auto renderer = make({VolumePath::cpu, CountTarget::automatic});
+  ASSERT_TRUE(renderer);
+  const RenderOptions options{160, 90, Method::zfail, Generator::robust};
+  const Frame cpu = renderer->render(*scene, options);
+  renderer->set_settings({VolumePath::gpu, CountTarget::stencil});
+  const Frame gpu = renderer->render(*scene, options);
+  renderer->set_settings({VolumePath::cpu, CountTarget::additive});
+  const Frame back = renderer->render(*scene, options);
+  EXPECT_EQ(take_error(), "");
+  EXPECT_EQ(back.shadowed, cpu.shadowed);
+  std::size_t differ = 0;
+  for (std::size_t p = 0; p < cpu.shadowed[0].size(); ++p) differ += cpu.shadowed[0][p] != gpu.shadowed[0][p];
+  EXPECT_LT(differ, cpu.shadowed[0].size() / 200);  // facing rounds differently on the GPU
+}
+
+TEST(GlRenderer, SettingsAreParsedAndCheckedWithClearMessages) {
+  EXPECT_FALSE(check_settings({VolumePath::gpu, CountTarget::automatic}, Generator::multiplicity).ok());
+  EXPECT_TRUE(check_settings({VolumePath::gpu, CountTarget::automatic}, Generator::robust).ok());
+  EXPECT_TRUE(check_settings({VolumePath::cpu, CountTarget::stencil}, Generator::multiplicity).ok());
+  EXPECT_EQ(parse_volume_path("gpu").value(), VolumePath::gpu);
+  EXPECT_EQ(parse_count_target("additive").value(), CountTarget::additive);
+  EXPECT_EQ(parse_backend("auto").value(), Backend::automatic);
+  EXPECT_EQ(parse_backend("dx12").error().message,
+            "unknown backend 'dx12': expected soft, gl or auto");
+  auto soft_gpu = make_renderer(Backend::soft, {VolumePath::gpu, CountTarget::automatic});
+  ASSERT_FALSE(soft_gpu.ok());
+}
+
+}  // namespace
+}  // namespace shadowvol::gl
