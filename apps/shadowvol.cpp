@@ -18,6 +18,8 @@
 #include "core/topology.h"
 #include "core/volume.h"
 #include "gl/backend.h"
+#include "image_file.h"
+#include "view.h"
 #include "gl/context.h"
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
@@ -26,7 +28,6 @@
 #include "trace/reference.h"
 #include "verify/verify.h"
 
-#include <stb/stb_image_write.h>
 
 #ifndef SHADOWVOL_VERSION
 #error "SHADOWVOL_VERSION is set by CMake"
@@ -218,7 +219,9 @@ struct FrameArgs {
   std::string counts = "auto";
 };
 
-void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_list) {
+// `with_backend`: false for the viewer, which is OpenGL by nature.
+void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_list,
+                       bool with_backend = true) {
   cmd->add_option("--scene", args.scene,
                   "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
       ->capture_default_str();
@@ -227,10 +230,11 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_
   cmd->add_option("--generator", args.generator, "standard, robust, multiplicity or auto")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_option("--backend", args.backend,
-                  "soft (CPU rasterizer), gl (OpenGL 4.5, headless) or auto (gl if a context "
-                  "can be made, else soft)")
-      ->capture_default_str();
+  if (with_backend)
+    cmd->add_option("--backend", args.backend,
+                    "soft (CPU rasterizer), gl (OpenGL 4.5, headless) or auto (gl if a context "
+                    "can be made, else soft)")
+        ->capture_default_str();
   cmd->add_option("--volumes", args.volumes,
                   "gl: volumes built on the cpu (any generator) or in a geometry shader on the gpu "
                   "(standard or robust)")
@@ -281,12 +285,6 @@ Expected<std::unique_ptr<Renderer>> make_frame_renderer(const ResolvedFrame& fra
   if (!made) return made.error();
   if (!made->note.empty()) std::cerr << "shadowvol: " << made->note << "\n";
   return std::move(made->renderer);
-}
-
-Expected<void> write_png(const std::string& path, const Image& img) {
-  if (stbi_write_png(path.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4) == 0)
-    return make_error(path + ": cannot write the image (is the directory there and writable?)");
-  return {};
 }
 
 struct RenderArgs {
@@ -393,6 +391,13 @@ int verify(const VerifyArgs& args) {
   return c.mismatched_outside_band == 0 ? 0 : 1;
 }
 
+int view(const FrameArgs& frame, int frames, const std::string& screenshot) {
+  auto resolved = resolve(frame);
+  if (!resolved) return fail(resolved.error().message);
+  if (frames < 0) return fail("--frames: " + std::to_string(frames) + " is not a count");
+  return run_viewer({std::move(resolved->scene), resolved->options, resolved->gl, frames, screenshot});
+}
+
 int info(bool json) {
   auto context = gl::Context::create_headless();
   if (!context) return fail("cannot create an OpenGL context: " + context.error().message);
@@ -472,6 +477,18 @@ int main(int argc, char** argv) {
                    "Verify this frame of the scene's animation")
       ->capture_default_str();
 
+  FrameArgs view_args{"demo", "auto", "auto", "1280x720", "gl"};
+  int view_frames = 0;
+  std::string view_screenshot;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view",
+      "Open a window on a scene (OpenGL): drag to orbit, right-drag to pan, wheel to zoom, "
+      "shift-drag the light; M method, V volumes, G cpu/gpu volumes, F12 screenshot");
+  add_frame_options(view_cmd, view_args, scene_list, false);
+  view_cmd->add_option("--frames", view_frames, "Close after this many frames (0: when closed)")
+      ->capture_default_str();
+  view_cmd->add_option("--screenshot", view_screenshot, "Write the last frame to this PNG");
+
   bool info_json = false;
   CLI::App* info_cmd = app.add_subcommand(
       "info", "The OpenGL driver a headless context gets, and the features the backend uses");
@@ -483,6 +500,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   if (info_cmd->parsed()) return info(info_json);
+  if (view_cmd->parsed()) return view(view_args, view_frames, view_screenshot);
   if (render_cmd->parsed()) return render(render_args);
   if (verify_cmd->parsed()) return verify(verify_args);
   if (inspect_cmd->parsed()) {

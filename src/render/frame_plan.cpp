@@ -115,6 +115,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
       bounds[o] = {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f};
     }
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
+  stats.zfail_lights.assign(objects, 0);
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
     for (std::size_t o = 0; o < objects; ++o) {
       const bool zfail =
@@ -123,6 +124,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
               : options.method == Method::zfail;
       plan.zfail[l][o] = zfail;
       (zfail ? stats.objects_zfail : stats.objects_zpass) += 1;
+      stats.zfail_lights[o] += zfail;
     }
   return plan;
 }

@@ -49,6 +49,7 @@ struct FrameStats {
   std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
   std::size_t volume_primitives = 0;          // over all lights
   int objects_zpass = 0, objects_zfail = 0;   // over all lights
+  std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for
   int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work
   soft::Counters depth, counts;
 };

@@ -37,6 +37,7 @@ const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarge
 const Variant kGlAdditive{"gl_additive", Backend::gl,
                           {gl::VolumePath::cpu, gl::CountTarget::additive}};
 const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlAdditive};
+void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 
 Frame render(const Variant& variant, const Scene& scene, const RenderOptions& options) {
   auto made = make_renderer(variant.backend, variant.gl);

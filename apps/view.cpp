@@ -1,0 +1,380 @@
+#include "view.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+// GLFW after epoxy, which provides the OpenGL declarations.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/gtx/rotate_vector.hpp>
+#include <stb/stb_easy_font.h>
+
+#include "gl/objects.h"
+#include "image_file.h"
+
+namespace shadowvol {
+namespace {
+
+// What the mouse and keys change, and the frame they change it in.
+struct Controls {
+  glm::vec3 target{0.0f};
+  float distance = 1.0f, yaw = 0.0f, pitch = 0.0f;
+  glm::vec4 light{0.0f};  // the first light, dragged about the target
+  bool dragging_light = false;
+  int button = -1;  // GLFW mouse button held, or -1
+  double last_x = 0, last_y = 0;
+  Method method = Method::automatic;
+  bool show_volumes = false, paused = false, screenshot = false;
+  gl::GlSettings gl;
+
+  void look_from(const Camera& camera) {
+    target = camera.target;
+    const glm::vec3 d = camera.position - camera.target;
+    distance = glm::length(d);
+    yaw = std::atan2(d.x, d.z);
+    pitch = std::asin(std::clamp(d.y / distance, -1.0f, 1.0f));
+  }
+  glm::vec3 eye() const {
+    return target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                                         std::cos(pitch) * std::cos(yaw));
+  }
+};
+
+Controls& controls_of(GLFWwindow* window) {
+  return *static_cast<Controls*>(glfwGetWindowUserPointer(window));
+}
+
+void on_button(GLFWwindow* window, int button, int action, int mods) {
+  Controls& c = controls_of(window);
+  if (action == GLFW_RELEASE) {
+    c.button = -1;
+    return;
+  }
+  c.button = button;
+  c.dragging_light = button == GLFW_MOUSE_BUTTON_LEFT &&
+                     ((mods & GLFW_MOD_SHIFT) != 0 || glfwGetKey(window, GLFW_KEY_L) == GLFW_PRESS);
+  glfwGetCursorPos(window, &c.last_x, &c.last_y);
+}
+
+void on_move(GLFWwindow* window, double x, double y) {
+  Controls& c = controls_of(window);
+  const auto dx = static_cast<float>(x - c.last_x), dy = static_cast<float>(y - c.last_y);
+  c.last_x = x;
+  c.last_y = y;
+  if (c.button == GLFW_MOUSE_BUTTON_LEFT && c.dragging_light) {
+    // Around the vertical axis through the target, and up or down.
+    const glm::vec3 centre = c.light.w != 0.0f ? c.target : glm::vec3(0.0f);
+    glm::vec3 offset = glm::vec3(c.light) - centre;
+    offset = glm::rotateY(offset, -dx * 0.01f);
+    offset.y = std::max(offset.y - dy * 0.02f * std::max(1.0f, glm::length(offset) * 0.2f), 0.05f);
+    c.light = glm::vec4(centre + offset, c.light.w);
+  } else if (c.button == GLFW_MOUSE_BUTTON_LEFT) {
+    c.yaw -= dx * 0.01f;
+    c.pitch = std::clamp(c.pitch + dy * 0.01f, -1.5f, 1.5f);
+  } else if (c.button == GLFW_MOUSE_BUTTON_RIGHT || c.button == GLFW_MOUSE_BUTTON_MIDDLE) {
+    const glm::vec3 forward = glm::normalize(c.target - c.eye());
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    const glm::vec3 up = glm::cross(right, forward);
+    c.target += (-dx * right + dy * up) * (c.distance * 0.0015f);
+  }
+}
+
+void on_scroll(GLFWwindow* window, double, double y) {
+  Controls& c = controls_of(window);
+  c.distance = std::clamp(c.distance * std::pow(0.9f, static_cast<float>(y)), 1e-3f, 1e6f);
+}
+
+void on_key(GLFWwindow* window, int key, int, int action, int) {
+  if (action != GLFW_PRESS) return;
+  Controls& c = controls_of(window);
+  switch (key) {
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q:
+      glfwSetWindowShouldClose(window, GLFW_TRUE);
+      break;
+    case GLFW_KEY_M:
+      c.method = c.method == Method::automatic ? Method::zpass
+                 : c.method == Method::zpass   ? Method::zfail
+                                               : Method::automatic;
+      break;
+    case GLFW_KEY_V:
+      c.show_volumes = !c.show_volumes;
+      break;
+    case GLFW_KEY_G:
+      c.gl.volumes = c.gl.volumes == gl::VolumePath::cpu ? gl::VolumePath::gpu : gl::VolumePath::cpu;
+      break;
+    case GLFW_KEY_SPACE:
+      c.paused = !c.paused;
+      break;
+    case GLFW_KEY_F12:
+      c.screenshot = true;
+      break;
+    default:
+      break;
+  }
+}
+
+// Text in the top-left corner: stb_easy_font's quads, drawn as triangles in pixel units.
+class TextOverlay {
+ public:
+  static Expected<TextOverlay> create() {
+    auto program = gl::link_program(
+        "text", {{GL_VERTEX_SHADER, R"(#version 450 core
+layout(location = 0) in vec2 position;  // pixels, y down
+layout(location = 1) in vec4 colour;
+layout(location = 0) uniform vec2 viewport;
+out vec4 tint;
+void main() {
+  tint = colour;
+  gl_Position = vec4(position.x / viewport.x * 2.0 - 1.0, 1.0 - position.y / viewport.y * 2.0, 0.0, 1.0);
+}
+)"},
+                 {GL_FRAGMENT_SHADER, R"(#version 450 core
+in vec4 tint;
+layout(location = 0) out vec4 colour;
+void main() { colour = tint; }
+)"}});
+    if (!program) return program.error();
+    TextOverlay t;
+    t.program_ = std::move(*program);
+    return t;
+  }
+
+  void draw(const std::vector<std::string>& lines, int width, int height) {
+    struct Vertex {
+      float x, y, z;
+      unsigned char rgba[4];
+    };
+    std::vector<Vertex> quads;
+    std::vector<Vertex> scratch(4 * 2000);
+    const float scale = width >= 1200 ? 2.0f : 1.5f;
+    float y = 6.0f;
+    for (const std::string& line : lines) {
+      std::vector<char> text(line.begin(), line.end());
+      text.push_back('\0');
+      for (int shadow = 1; shadow >= 0; --shadow) {  // a dark copy behind, for contrast
+        unsigned char colour[4] = {255, 255, 255, 255};
+        if (shadow) colour[0] = colour[1] = colour[2] = 0;
+        const int n = stb_easy_font_print(0, 0, text.data(), colour, scratch.data(),
+                                          static_cast<int>(scratch.size() * sizeof(Vertex)));
+        for (int i = 0; i < 4 * n; ++i) {
+          Vertex v = scratch[static_cast<std::size_t>(i)];
+          v.x = 8.0f + v.x * scale + shadow;
+          v.y = y + v.y * scale + shadow;
+          quads.push_back(v);
+        }
+      }
+      y += 12.0f * scale;
+    }
+    std::vector<Vertex> triangles;
+    for (std::size_t q = 0; q + 3 < quads.size(); q += 4)
+      for (int k : {0, 1, 2, 0, 2, 3}) triangles.push_back(quads[q + static_cast<std::size_t>(k)]);
+    if (triangles.empty()) return;
+    buffer_ = gl::make_buffer();
+    glNamedBufferStorage(buffer_.get(), static_cast<GLsizeiptr>(triangles.size() * sizeof(Vertex)),
+                         triangles.data(), 0);
+    if (!vao_) vao_ = gl::make_vertex_array();
+    glVertexArrayVertexBuffer(vao_.get(), 0, buffer_.get(), 0, sizeof(Vertex));
+    glVertexArrayAttribFormat(vao_.get(), 0, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribFormat(vao_.get(), 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(Vertex, rgba));
+    for (GLuint a : {0u, 1u}) {
+      glVertexArrayAttribBinding(vao_.get(), a, 0);
+      glEnableVertexArrayAttrib(vao_.get(), a);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glUseProgram(program_.get());
+    glUniform2f(0, static_cast<float>(width), static_cast<float>(height));
+    glBindVertexArray(vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size()));
+    glBindVertexArray(0);
+    glUseProgram(0);
+  }
+
+ private:
+  gl::Object program_, buffer_, vao_;
+};
+
+// Copies an image (row 0 at the top) to the window's framebuffer.
+void show_image(const Image& image) {
+  gl::Object texture = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(texture.get(), 1, GL_RGBA8, image.width, image.height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA,
+                      GL_UNSIGNED_BYTE, image.rgba.data());
+  gl::Object fbo = gl::make_framebuffer();
+  glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, texture.get(), 0);
+  glBlitNamedFramebuffer(fbo.get(), 0, 0, 0, image.width, image.height, 0, image.height,
+                         image.width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+Image read_window(int width, int height) {
+  Image image{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
+  std::vector<std::uint8_t> rows(image.rgba.size());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  const std::size_t stride = static_cast<std::size_t>(width) * 4;
+  for (int y = 0; y < height; ++y)
+    std::copy_n(&rows[static_cast<std::size_t>(height - 1 - y) * stride], stride,
+                &image.rgba[static_cast<std::size_t>(y) * stride]);
+  return image;
+}
+
+std::size_t distinct_colours(const Image& image) {
+  std::vector<std::uint32_t> colours;
+  for (std::size_t p = 0; p + 3 < image.rgba.size(); p += 4)
+    colours.push_back(image.rgba[p] | image.rgba[p + 1] << 8 | image.rgba[p + 2] << 16);
+  std::sort(colours.begin(), colours.end());
+  return static_cast<std::size_t>(std::unique(colours.begin(), colours.end()) - colours.begin());
+}
+
+// Ends GLFW however run_viewer returns.
+struct GlfwSession {
+  bool ok = glfwInit() == GLFW_TRUE;
+  ~GlfwSession() {
+    if (ok) glfwTerminate();
+  }
+};
+
+int fail(const std::string& message) {
+  std::cerr << "shadowvol: error: " << message << "\n";
+  return 1;
+}
+
+}  // namespace
+
+int run_viewer(const ViewArgs& args) {
+  glfwSetErrorCallback([](int, const char* text) { std::cerr << "shadowvol: glfw: " << text << "\n"; });
+  GlfwSession session;
+  if (!session.ok)
+    return fail(
+        "cannot open a window: GLFW did not start (is there a display? Without one, use render "
+        "--backend gl, or run under xvfb-run)");
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(args.options.width, args.options.height,
+                                        ("shadowvol view: " + args.scene.name).c_str(), nullptr, nullptr);
+  if (window == nullptr)
+    return fail(
+        "cannot open a window with an OpenGL 4.5 core context (on Debian: apt-get install "
+        "libgl1 libglx-mesa0 libgl1-mesa-dri, or the GPU vendor's driver)");
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(args.frames > 0 ? 0 : 1);
+  int status = 0;
+  {
+    auto renderer = gl::GlRenderer::create(args.gl);
+    if (!renderer) {
+      glfwDestroyWindow(window);
+      return fail(renderer.error().message);
+    }
+    auto text = TextOverlay::create();
+    if (!text) {
+      glfwDestroyWindow(window);
+      return fail(text.error().message);
+    }
+    Controls controls;
+    controls.look_from(args.scene.camera);
+    if (!args.scene.lights.empty()) controls.light = args.scene.lights[0].position;
+    controls.method = args.options.method;
+    controls.gl = args.gl;
+    glfwSetWindowUserPointer(window, &controls);
+    glfwSetMouseButtonCallback(window, on_button);
+    glfwSetCursorPosCallback(window, on_move);
+    glfwSetScrollCallback(window, on_scroll);
+    glfwSetKeyCallback(window, on_key);
+
+    int animation_frame = 0, shown = 0, screenshots = 0;
+    double smoothed_ms = 0.0;
+    while (!glfwWindowShouldClose(window)) {
+      glfwPollEvents();
+      int width = 0, height = 0;
+      glfwGetFramebufferSize(window, &width, &height);
+      if (width < 1 || height < 1) continue;  // minimised
+      Scene scene = scene_at_frame(args.scene, animation_frame);
+      if (!controls.paused) ++animation_frame;
+      scene.camera.target = controls.target;
+      scene.camera.position = controls.eye();
+      if (!scene.lights.empty()) scene.lights[0].position = controls.light;
+      RenderOptions options = args.options;
+      options.width = std::min(width, 16384);
+      options.height = std::min(height, 16384);
+      options.method = controls.method;
+      options.show_volumes = controls.show_volumes;
+      gl::GlSettings settings = controls.gl;
+      if (!gl::check_settings(settings, options.generator).ok()) settings.volumes = gl::VolumePath::cpu;
+      (*renderer)->set_settings(settings);
+
+      const auto start = std::chrono::steady_clock::now();
+      FrameStats stats;
+      if (options.show_volumes) {  // the edges are drawn over a read-back image
+        const Frame frame = (*renderer)->render(scene, options);
+        show_image(frame.image);
+        stats = frame.stats;
+      } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        stats = (*renderer)->present(scene, options);
+      }
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      smoothed_ms = shown == 0 ? ms : 0.9 * smoothed_ms + 0.1 * ms;
+
+      char line[256];
+      std::vector<std::string> lines;
+      std::snprintf(line, sizeof line, "%.1f ms a frame (depth %.1f, counts %.1f, shade %.1f)  %s",
+                    smoothed_ms, stats.ms_depth, stats.ms_counts, stats.ms_shade,
+                    (*renderer)->info().renderer.c_str());
+      lines.push_back(line);
+      std::snprintf(line, sizeof line, "method %s [M]  volumes %s [G]  edges %s [V]  %s",
+                    std::string(to_string(options.method)).c_str(),
+                    std::string(gl::to_string(settings.volumes)).c_str(),
+                    options.show_volumes ? "on" : "off", controls.paused ? "paused [Space]" : "");
+      lines.push_back(line);
+      for (std::size_t o = 0; o < scene.objects.size() && o < 12; ++o) {
+        const int zfail = o < stats.zfail_lights.size() ? stats.zfail_lights[o] : 0;
+        const int lights = static_cast<int>(scene.lights.size());
+        std::snprintf(line, sizeof line, "  %s: %s", scene.objects[o].name.c_str(),
+                      zfail == 0 ? "z-pass" : zfail == lights ? "z-fail" : "z-fail for some lights");
+        lines.push_back(line);
+      }
+      lines.push_back("drag: orbit  right drag: pan  wheel: zoom  shift+drag: light  F12: screenshot");
+      text->draw(lines, width, height);
+
+      ++shown;
+      const bool last = args.frames > 0 && shown >= args.frames;
+      if (controls.screenshot || (last && !args.screenshot.empty())) {
+        const std::string path = last && !args.screenshot.empty()
+                                     ? args.screenshot
+                                     : "shadowvol-view-" + std::to_string(++screenshots) + ".png";
+        const Image image = read_window(width, height);
+        if (auto ok = write_png(path, image); !ok) {
+          status = fail(ok.error().message);
+          break;
+        }
+        std::cout << "wrote screenshot " << path << " (" << width << "x" << height << ", "
+                  << distinct_colours(image) << " distinct colours)\n";
+        controls.screenshot = false;
+      }
+      glfwSwapBuffers(window);
+      if (last) break;
+    }
+    if (const std::string error = gl::take_error(); !error.empty())
+      status = fail("OpenGL reported " + error);
+  }  // the renderer and the text overlay go while the context is still current
+  glfwDestroyWindow(window);
+  return status;
+}
+
+}  // namespace shadowvol
