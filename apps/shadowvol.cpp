@@ -1,5 +1,6 @@
 // The shadowvol command line. Thin by design: parses arguments, calls the library, prints.
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -398,6 +399,72 @@ int view(const FrameArgs& frame, int frames, const std::string& screenshot) {
   return run_viewer({std::move(resolved->scene), resolved->options, resolved->gl, frames, screenshot});
 }
 
+// Frame times of scenes on one backend: the mean over `frames` frames after one warm-up frame
+// (which builds volumes and compiles shaders), per stage.
+int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int frames, bool json) {
+  if (frames < 1) return fail("--frames: " + std::to_string(frames) + " is not a positive count");
+  std::unique_ptr<Renderer> renderer;
+  nlohmann::json out = nlohmann::json::array();
+  StatusLine status;
+  for (const std::string& name : scenes) {
+    FrameArgs args = frame;
+    args.scene = name;
+    auto resolved = resolve(args);
+    if (!resolved) return fail(resolved.error().message);
+    if (!renderer) {
+      auto made = make_frame_renderer(*resolved);
+      if (!made) return fail(made.error().message);
+      renderer = std::move(*made);
+    }
+    const RenderOptions& options = resolved->options;
+    FrameStats sum;
+    double wall = 0.0;
+    for (int i = -1; i < frames; ++i) {
+      status.show(resolved->scene.name + ": frame " + std::to_string(i + 2) + " of " +
+                  std::to_string(frames + 1));
+      const auto start = std::chrono::steady_clock::now();
+      const Frame f = renderer->render(resolved->scene, options);
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      if (i < 0) continue;  // warm-up
+      wall += ms;
+      sum.ms_depth += f.stats.ms_depth;
+      sum.ms_volumes += f.stats.ms_volumes;
+      sum.ms_counts += f.stats.ms_counts;
+      sum.ms_shade += f.stats.ms_shade;
+      sum.ms_readback += f.stats.ms_readback;
+      sum.volume_primitives = f.stats.volume_primitives;
+    }
+    status.clear();
+    const double n = frames;
+    const nlohmann::json row{{"scene", resolved->scene.name},
+                             {"backend", std::string(renderer->backend())},
+                             {"width", options.width},
+                             {"height", options.height},
+                             {"method", std::string(to_string(options.method))},
+                             {"volumes", args.volumes},
+                             {"frames", frames},
+                             {"frame_ms", wall / n},
+                             {"depth_ms", sum.ms_depth / n},
+                             {"volumes_ms", sum.ms_volumes / n},
+                             {"counts_ms", sum.ms_counts / n},
+                             {"shade_ms", sum.ms_shade / n},
+                             {"readback_ms", sum.ms_readback / n}};
+    if (json) {
+      out.push_back(row);
+    } else {
+      std::printf(
+          "%-16s %s %dx%d: %7.2f ms a frame (depth %.2f, volumes %.2f, counts %.2f, shade %.2f, "
+          "read-back %.2f)\n",
+          resolved->scene.name.c_str(), std::string(renderer->backend()).c_str(), options.width,
+          options.height, wall / n, sum.ms_depth / n, sum.ms_volumes / n, sum.ms_counts / n,
+          sum.ms_shade / n, sum.ms_readback / n);
+    }
+  }
+  if (json) std::cout << out.dump(2) << "\n";
+  return 0;
+}
+
 int info(bool json) {
   auto context = gl::Context::create_headless();
   if (!context) return fail("cannot create an OpenGL context: " + context.error().message);
@@ -489,6 +556,21 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   view_cmd->add_option("--screenshot", view_screenshot, "Write the last frame to this PNG");
 
+  FrameArgs bench_args{"demo", "auto", "auto", "1920x1080"};
+  std::vector<std::string> bench_scenes;
+  for (std::string_view n : builtin_scene_names()) bench_scenes.emplace_back(n);
+  int bench_frames = 10;
+  bool bench_json = false;
+  CLI::App* bench_cmd = app.add_subcommand(
+      "bench", "Time frames of scenes on a backend: the mean per stage over --frames frames");
+  add_frame_options(bench_cmd, bench_args, scene_list);
+  bench_cmd->remove_option(bench_cmd->get_option("--scene"));
+  bench_cmd->add_option("--scenes", bench_scenes, "Scenes to time (names, .json files or meshes)")
+      ->capture_default_str();
+  bench_cmd->add_option("--frames", bench_frames, "Frames to time per scene, after one warm-up")
+      ->capture_default_str();
+  bench_cmd->add_flag("--json", bench_json, "Print one JSON array");
+
   bool info_json = false;
   CLI::App* info_cmd = app.add_subcommand(
       "info", "The OpenGL driver a headless context gets, and the features the backend uses");
@@ -501,6 +583,7 @@ int main(int argc, char** argv) {
   }
   if (info_cmd->parsed()) return info(info_json);
   if (view_cmd->parsed()) return view(view_args, view_frames, view_screenshot);
+  if (bench_cmd->parsed()) return bench(bench_args, bench_scenes, bench_frames, bench_json);
   if (render_cmd->parsed()) return render(render_args);
   if (verify_cmd->parsed()) return verify(verify_args);
   if (inspect_cmd->parsed()) {
