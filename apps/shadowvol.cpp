@@ -433,7 +433,6 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
       sum.ms_counts += f.stats.ms_counts;
       sum.ms_shade += f.stats.ms_shade;
       sum.ms_readback += f.stats.ms_readback;
-      sum.volume_primitives = f.stats.volume_primitives;
     }
     status.clear();
     const double n = frames;

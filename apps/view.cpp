@@ -324,7 +324,6 @@ int run_viewer(const ViewArgs& args) {
         show_image(frame.image);
         stats = frame.stats;
       } else {
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
         stats = (*renderer)->present(scene, options);
       }
       const double ms =

@@ -9,6 +9,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/names.h"
+
 namespace shadowvol {
 namespace {
 
@@ -102,11 +104,9 @@ std::string_view to_string(Generator generator) {
 }
 
 Expected<Generator> parse_generator(std::string_view name) {
-  for (Generator g :
-       {Generator::standard, Generator::robust, Generator::multiplicity, Generator::automatic})
-    if (name == to_string(g)) return g;
-  return make_error("unknown generator '" + std::string(name) +
-                    "': expected standard, robust, multiplicity or auto");
+  return parse_name(
+      name, {Generator::standard, Generator::robust, Generator::multiplicity, Generator::automatic},
+      "generator");
 }
 
 Generator resolve_generator(Generator requested, const TopologyReport& report) {

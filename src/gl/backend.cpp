@@ -1,5 +1,6 @@
 #include "gl/backend.h"
 
+#include "core/names.h"
 #include "render/soft_renderer.h"
 
 namespace shadowvol {
@@ -17,9 +18,7 @@ std::string_view to_string(Backend backend) {
 }
 
 Expected<Backend> parse_backend(std::string_view name) {
-  for (Backend b : {Backend::soft, Backend::gl, Backend::automatic})
-    if (name == to_string(b)) return b;
-  return make_error("unknown backend '" + std::string(name) + "': expected soft, gl or auto");
+  return parse_name(name, {Backend::soft, Backend::gl, Backend::automatic}, "backend");
 }
 
 namespace {

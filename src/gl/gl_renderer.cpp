@@ -13,6 +13,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
 
+#include "core/names.h"
 #include "gl/shaders.h"
 
 namespace shadowvol::gl {
@@ -50,9 +51,7 @@ void flip_rows(const std::vector<In>& in, int w, int h, std::vector<Out>& out, C
 std::string_view to_string(VolumePath path) { return path == VolumePath::cpu ? "cpu" : "gpu"; }
 
 Expected<VolumePath> parse_volume_path(std::string_view name) {
-  for (VolumePath p : {VolumePath::cpu, VolumePath::gpu})
-    if (name == to_string(p)) return p;
-  return make_error("unknown volume path '" + std::string(name) + "': expected cpu or gpu");
+  return parse_name(name, {VolumePath::cpu, VolumePath::gpu}, "volume path");
 }
 
 std::string_view to_string(CountTarget target) {
@@ -68,10 +67,8 @@ std::string_view to_string(CountTarget target) {
 }
 
 Expected<CountTarget> parse_count_target(std::string_view name) {
-  for (CountTarget t : {CountTarget::automatic, CountTarget::stencil, CountTarget::additive})
-    if (name == to_string(t)) return t;
-  return make_error("unknown count target '" + std::string(name) +
-                    "': expected stencil, additive or auto");
+  return parse_name(name, {CountTarget::stencil, CountTarget::additive, CountTarget::automatic},
+                    "count target");
 }
 
 Expected<void> check_settings(const GlSettings& settings, Generator generator) {
@@ -341,9 +338,7 @@ Frame GlRenderer::render(const Scene& scene, const RenderOptions& options) {
 
 FrameStats GlRenderer::present(const Scene& scene, const RenderOptions& options) {
   Frame frame = draw(scene, options, false);
-  GLint target = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-  glBlitNamedFramebuffer(targets_->resolved.get(), static_cast<GLuint>(target), 0, 0,
+  glBlitNamedFramebuffer(targets_->resolved.get(), 0, 0, 0,
                          options.width, options.height, 0, 0, options.width, options.height,
                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
   return frame.stats;
@@ -509,8 +504,7 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
         continue;
       }
       const SceneObject& object = scene.objects[o];
-      const glm::vec4 object_light(glm::inverse(glm::dmat4(object.transform)) *
-                                   glm::dvec4(scene.lights[l].position));
+      const glm::vec4 object_light = object_space_light(object, scene.lights[l].position);
       const bool robust = resolve_generator(options.generator, object.topology->report) !=
                           Generator::standard;
       MeshBuffers& m = *meshes[o];

@@ -66,7 +66,7 @@ class GlRenderer final : public Renderer {
   Frame render(const Scene& scene, const RenderOptions& options) override;
   std::string_view backend() const override { return "gl"; }
 
-  // Draws the frame and copies it to the current draw framebuffer (the viewer's window), with
+  // Draws the frame and copies it to the context's default framebuffer (the window), with
   // no read-back: Frame::image and the masks stay empty; stats are filled.
   FrameStats present(const Scene& scene, const RenderOptions& options);
 

@@ -129,6 +129,10 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   return plan;
 }
 
+glm::vec4 object_space_light(const SceneObject& object, const glm::vec4& light) {
+  return glm::vec4(glm::inverse(glm::dmat4(object.transform)) * glm::dvec4(light));
+}
+
 std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
                                       std::size_t light, Generator generator, FrameStats& stats) {
   if (cache_.size() < scene.lights.size()) cache_.resize(scene.lights.size());
@@ -138,8 +142,7 @@ std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
   std::vector<bool> rebuilt(scene.objects.size(), false);
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
-    const glm::vec4 object_light(glm::inverse(glm::dmat4(object.transform)) *
-                                 glm::dvec4(scene.lights[light].position));
+    const glm::vec4 object_light = object_space_light(object, scene.lights[light].position);
     const VolumeOptions options{generator, static_cast<bool>(plan.zfail[light][o])};
     Entry& c = cache[o];
     if (c.topology == object.topology && c.light == object_light &&

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -43,6 +44,10 @@ struct FramePlan {
 // (GPU Gems 3 §11.2.3). Counts the objects of each method into stats.
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
 
+// The light in the object's own space (the inverse of its transform, in double), where its
+// volume is built whether on the CPU or in a geometry shader.
+glm::vec4 object_space_light(const SceneObject& object, const glm::vec4& light);
+
 // The CPU-built volumes of the last frame, per light and object, in each object's own space.
 class VolumeCache {
  public:
@@ -54,7 +59,6 @@ class VolumeCache {
   const VolumeBuffer& volume(std::size_t light, std::size_t object) const {
     return cache_[light][object].volume;
   }
-  std::size_t lights() const { return cache_.size(); }
 
  private:
   struct Entry {

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "core/names.h"
 #include "soft/raster.h"
 
 namespace shadowvol {
@@ -18,9 +19,7 @@ std::string_view to_string(Method method) {
 }
 
 Expected<Method> parse_method(std::string_view name) {
-  for (Method m : {Method::zpass, Method::zfail, Method::automatic})
-    if (name == to_string(m)) return m;
-  return make_error("unknown method '" + std::string(name) + "': expected zpass, zfail or auto");
+  return parse_name(name, {Method::zpass, Method::zfail, Method::automatic}, "method");
 }
 
 Expected<void> check_options(const RenderOptions& options) {

@@ -1,11 +1,10 @@
 #include "render/soft_renderer.h"
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <string>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
