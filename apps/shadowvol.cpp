@@ -433,10 +433,12 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
       sum.ms_counts += f.stats.ms_counts;
       sum.ms_shade += f.stats.ms_shade;
       sum.ms_readback += f.stats.ms_readback;
+      sum.volume_primitives += f.stats.volume_primitives;
+      sum.counts += f.stats.counts;
     }
     status.clear();
     const double n = frames;
-    const nlohmann::json row{{"scene", resolved->scene.name},
+    nlohmann::json row{{"scene", resolved->scene.name},
                              {"backend", std::string(renderer->backend())},
                              {"width", options.width},
                              {"height", options.height},
@@ -448,7 +450,16 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
                              {"volumes_ms", sum.ms_volumes / n},
                              {"counts_ms", sum.ms_counts / n},
                              {"shade_ms", sum.ms_shade / n},
-                             {"readback_ms", sum.ms_readback / n}};
+                             {"readback_ms", sum.ms_readback / n},
+                             {"volume_primitives", sum.volume_primitives / frames}};
+    if (renderer->backend() == "soft") {  // the rasterizer's work, per frame (gl has no counters)
+      const soft::Counters& c = sum.counts;
+      row["count_pass"] = {{"triangles", c.triangles_in / frames},
+                           {"tiles_touched", c.tiles_touched / frames},
+                           {"tiles_skipped", c.tiles_skipped / frames},
+                           {"pixels_processed", c.pixels_processed / frames},
+                           {"count_updates", c.count_updates / frames}};
+    }
     if (json) {
       out.push_back(row);
     } else {

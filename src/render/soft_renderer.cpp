@@ -76,7 +76,6 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
     stats.ms_volumes += ms_since(start);
 
     start = Clock::now();
-    target_.clear_count();
     std::vector<std::int32_t> weights;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       const VolumeBuffer& v = volumes_.volume(l, o);
@@ -100,7 +99,7 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
                         zfail ? soft::CountRule::zfail : soft::CountRule::zpass, stats.counts,
                         bounds);
     }
-    for (std::size_t p = 0; p < pixels; ++p) frame.shadowed[l][p] = target_.count[p] != 0;
+    target_.take_nonzero_counts(frame.shadowed[l]);
     stats.ms_counts += ms_since(start);
   }
 

@@ -6,43 +6,23 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include <tbb/parallel_for.h>
 
 namespace shadowvol::soft {
 
-Target::Target(int w, int h)
-    : width(w),
-      height(h),
-      tiles_x((w + kTileSize - 1) / kTileSize),
-      tiles_y((h + kTileSize - 1) / kTileSize),
-      depth(static_cast<std::size_t>(w) * h, 1.0f),
-      count(static_cast<std::size_t>(w) * h, 0),
-      id(static_cast<std::size_t>(w) * h, kNoId),
-      tile_depth(static_cast<std::size_t>(tiles_x) * tiles_y) {
-  assert(w > 0 && h > 0 && w <= kMaxViewport && h <= kMaxViewport);
-}
-
-void Target::clear_depth(float z) {
-  std::fill(depth.begin(), depth.end(), z);
-  std::fill(id.begin(), id.end(), kNoId);
-  std::fill(tile_depth.begin(), tile_depth.end(), TileDepth{z, z});
-}
-
-void Target::clear_count() { std::fill(count.begin(), count.end(), 0); }
-
-void Target::update_tile_depth() {
-  for (int ty = 0; ty < tiles_y; ++ty)
-    for (int tx = 0; tx < tiles_x; ++tx) {
-      TileDepth bounds{1.0f, 0.0f};
-      for (int y = ty * kTileSize; y < std::min(height, (ty + 1) * kTileSize); ++y)
-        for (int x = tx * kTileSize; x < std::min(width, (tx + 1) * kTileSize); ++x) {
-          const float z = depth[static_cast<std::size_t>(y) * width + x];
-          bounds.zmin = std::min(bounds.zmin, z);
-          bounds.zmax = std::max(bounds.zmax, z);
-        }
-      tile_depth[static_cast<std::size_t>(ty) * tiles_x + tx] = bounds;
-    }
+Counters& Counters::operator+=(const Counters& other) {
+  triangles_in += other.triangles_in;
+  triangles_clipped += other.triangles_clipped;
+  triangles_culled += other.triangles_culled;
+  tiles_touched += other.tiles_touched;
+  tiles_skipped += other.tiles_skipped;
+  pixels_processed += other.pixels_processed;
+  pixels_passed += other.pixels_passed;
+  count_updates += other.count_updates;
+  return *this;
 }
 
 namespace {
@@ -125,6 +105,7 @@ struct Setup {
   std::int64_t dx[3], dy[3];
   std::int64_t bias[3];  // 0 on top-left edges, -1 elsewhere: the top-left fill rule
   double dzdx, dzdy;     // depth per pixel
+  double x_per_y[3];     // edge i's slope dx/dy, 0 for a horizontal edge
   std::int64_t min_x, max_x, min_y, max_y;  // subpixel bounding box
 };
 
@@ -156,6 +137,7 @@ bool setup(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, 
     // Top edge: horizontal with the interior below; left edge: running up. (Clockwise, y down.)
     const bool top_left = s.dy[i] < 0 || (s.dy[i] == 0 && s.dx[i] > 0);
     s.bias[i] = top_left ? 0 : -1;
+    s.x_per_y[i] = s.dy[i] == 0 ? 0.0 : double(s.dx[i]) / double(s.dy[i]);
   }
   const ScreenVertex& p = s.v[0];
   const double e1x = double(s.v[1].x - p.x), e1y = double(s.v[1].y - p.y);
@@ -171,13 +153,11 @@ bool setup(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, 
   return true;
 }
 
-// Depth of the triangle's plane at pixel (px, py), evaluated directly (not incrementally), so
-// that the same triangle gives the same depth at the same pixel in every pass. Clamped like a
-// depth clamp.
-inline float depth_at(const Setup& s, int px, int py) {
+// Depth of the triangle's plane at the centre of pixel (px, py), unclamped.
+inline double plane_depth(const Setup& s, int px, int py) {
   const double x = (double(px) + 0.5) - double(s.v[0].x) / kSubpixels;
   const double y = (double(py) + 0.5) - double(s.v[0].y) / kSubpixels;
-  return static_cast<float>(std::clamp(s.v[0].z + s.dzdx * x + s.dzdy * y, 0.0, 1.0));
+  return s.v[0].z + s.dzdx * x + s.dzdy * y;
 }
 
 // --- raster -------------------------------------------------------------------------------
@@ -189,60 +169,176 @@ inline std::int64_t edge_at(const Setup& s, int i, int px, int py) {
   return s.dx[i] * (cy - s.v[i].y) - s.dy[i] * (cx - s.v[i].x) + s.bias[i];
 }
 
-// Calls fragment(pixel_index, depth) for every covered pixel in tile rows [band_begin,
-// band_end), tile by tile. Per tile, first the edge test (edge functions are linear, so the
-// four corner pixel centres tell whether any pixel centre of the tile can be inside, and whether
-// all are), then tile_test(hi-z bounds, the triangle's depth range over the tile).
-template <class TileTest, class Fragment>
-void raster(const Target& target, const Setup& s, int band_begin, int band_end, Counters& counters,
-            TileTest&& tile_test, Fragment&& fragment) {
-  const auto pixel_of = [](std::int64_t sub) { return (sub - kSubpixels / 2) >> kSubpixelBits; };
-  const int px0 = static_cast<int>(std::max<std::int64_t>(0, pixel_of(s.min_x)));
-  const int px1 = static_cast<int>(std::min<std::int64_t>(target.width - 1, pixel_of(s.max_x) + 1));
-  const int py0 = static_cast<int>(
-      std::max<std::int64_t>({0, pixel_of(s.min_y), std::int64_t{band_begin} * kTileSize}));
-  const int py1 = static_cast<int>(std::min<std::int64_t>(
-      {target.height - 1, pixel_of(s.max_y) + 1, std::int64_t{band_end} * kTileSize - 1}));
-  if (px0 > px1 || py0 > py1) return;
-  const float zlo_triangle = std::min({s.v[0].z, s.v[1].z, s.v[2].z});
-  const float zhi_triangle = std::max({s.v[0].z, s.v[1].z, s.v[2].z});
-  for (int ty = py0 / kTileSize; ty <= py1 / kTileSize; ++ty)
-    for (int tx = px0 / kTileSize; tx <= px1 / kTileSize; ++tx) {
-      const int x0 = std::max(px0, tx * kTileSize),
-                x1 = std::min(px1, tx * kTileSize + kTileSize - 1);
-      const int y0 = std::max(py0, ty * kTileSize),
-                y1 = std::min(py1, ty * kTileSize + kTileSize - 1);
-      bool outside = false, covers_all = true;
-      for (int i = 0; i < 3 && !outside; ++i) {
-        const std::int64_t e[4] = {edge_at(s, i, x0, y0), edge_at(s, i, x1, y0),
-                                   edge_at(s, i, x0, y1), edge_at(s, i, x1, y1)};
-        outside = e[0] < 0 && e[1] < 0 && e[2] < 0 && e[3] < 0;
-        covers_all &= e[0] >= 0 && e[1] >= 0 && e[2] >= 0 && e[3] >= 0;
-      }
-      if (outside) continue;
-      ++counters.tiles_touched;
-      // The triangle's depth over the tile: its plane at the corner pixels, within its own range.
-      const float c[4] = {depth_at(s, x0, y0), depth_at(s, x1, y0), depth_at(s, x0, y1),
-                          depth_at(s, x1, y1)};
-      const float zlo = std::max(zlo_triangle, std::min({c[0], c[1], c[2], c[3]}));
-      const float zhi = std::min(zhi_triangle, std::max({c[0], c[1], c[2], c[3]}));
-      if (!tile_test(target.tile_depth[static_cast<std::size_t>(ty) * target.tiles_x + tx], zlo,
-                     zhi)) {
-        ++counters.tiles_skipped;
-        continue;
-      }
-      for (int py = y0; py <= y1; ++py) {
-        std::int64_t e0 = edge_at(s, 0, x0, py), e1 = edge_at(s, 1, x0, py),
-                     e2 = edge_at(s, 2, x0, py);
-        const std::int64_t step0 = -s.dy[0] * kSubpixels, step1 = -s.dy[1] * kSubpixels,
-                           step2 = -s.dy[2] * kSubpixels;
-        for (int px = x0; px <= x1; ++px, e0 += step0, e1 += step1, e2 += step2) {
-          if (!covers_all && (e0 < 0 || e1 < 0 || e2 < 0)) continue;
-          ++counters.pixels_processed;
-          fragment(static_cast<std::size_t>(py) * target.width + px, depth_at(s, px, py));
-        }
-      }
+// The pixel columns [px0, px1] that a triangle can cover in the rows [y0, y1]: the x extent of
+// its intersection with the slab of those rows' pixel centres, widened by a pixel for rounding.
+// A thin triangle that crosses the screen touches few tiles of each band, not its bounding box.
+bool columns_in_rows(const Setup& s, int y0, int y1, int width, int& px0, int& px1) {
+  const double top = double(y0) * kSubpixels + kSubpixels / 2;
+  const double bottom = double(y1) * kSubpixels + kSubpixels / 2;
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (int i = 0; i < 3; ++i) {
+    const ScreenVertex& p = s.v[i];
+    const ScreenVertex& q = s.v[(i + 1) % 3];
+    const double a = std::max<double>(std::min(p.y, q.y), top);
+    const double b = std::min<double>(std::max(p.y, q.y), bottom);
+    if (a > b) continue;  // the edge misses the slab
+    if (p.y == q.y) {
+      lo = std::min({lo, double(p.x), double(q.x)});
+      hi = std::max({hi, double(p.x), double(q.x)});
+      continue;
     }
+    for (const double y : {a, b}) {
+      const double x = double(p.x) + (y - double(p.y)) * s.x_per_y[i];
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+  }
+  if (lo > hi) return false;
+  const auto pixel_of = [](double sub) { return (sub - kSubpixels / 2) / kSubpixels; };
+  px0 = static_cast<int>(std::max(0.0, std::floor(pixel_of(lo)) - 1.0));
+  px1 = static_cast<int>(std::min(double(width - 1), std::ceil(pixel_of(hi)) + 1.0));
+  return px0 <= px1;
+}
+
+// Per-pixel depths are float, from the tile's first pixel: z = (z_tile + dz/dy j) + dz/dx i,
+// clamped to [0, 1] like a depth clamp. Every rounding step is monotonic in i and in j, so over a
+// tile the extremes lie at its corners; the same triangle gives the same depth at the same pixel
+// in every pass, since tiles lie on a fixed grid. Tile tests widen the corner range by kDepthSlack
+// where they clamp it to the triangle's vertex depths, which the float steps may overshoot.
+inline constexpr float kDepthSlack = 1e-6f;
+
+// --- lanes: a tile row of pixels in one vector (GCC/Clang vector extensions, which compile to
+// the build's SIMD width: AVX2 or AVX-512 with SHADOWVOL_NATIVE, pairs of SSE2 ops without) ---
+
+using Mask = std::int32_t __attribute__((vector_size(kTileSize * sizeof(std::int32_t))));
+using Floats = float __attribute__((vector_size(kTileSize * sizeof(float))));
+inline constexpr Mask kLaneIndex = {0, 1, 2, 3, 4, 5, 6, 7};
+inline constexpr Floats kLaneOffset = {0, 1, 2, 3, 4, 5, 6, 7};
+static_assert(kTileSize == 8, "kLaneIndex and kLaneOffset list one lane per tile column");
+
+// The first `lanes` elements of a row of a buffer; at the right edge of the image a row is
+// shorter than a tile, and nothing past it may be read or written (another band owns it).
+// `lanes` is std::integral_constant<int, kTileSize> for whole rows, so that they compile to one
+// vector load or store, or an int otherwise.
+template <class V, class T, class Lanes>
+V load_row(const T* p, Lanes lanes) {
+  V v{};
+  std::memcpy(&v, p, static_cast<std::size_t>(lanes) * sizeof(T));
+  return v;
+}
+template <class V, class T, class Lanes>
+void store_row(T* p, const V& v, Lanes lanes) {
+  std::memcpy(p, &v, static_cast<std::size_t>(lanes) * sizeof(T));
+}
+using WholeRow = std::integral_constant<int, kTileSize>;
+
+// Whether any lane of a mask is set.
+inline bool any(const Mask& m) {
+  using Words = std::uint64_t __attribute__((vector_size(sizeof(Mask))));
+  Words w;
+  std::memcpy(&w, &m, sizeof w);
+  std::uint64_t bits = 0;
+  for (std::size_t i = 0; i < sizeof(Mask) / sizeof(std::uint64_t); ++i) bits |= w[i];
+  return bits != 0;
+}
+
+// Adds up masks (-1 per true lane) lane-wise; total() is the number of true lanes seen.
+struct LaneCount {
+  Mask sum{};
+  void add(const Mask& m) { sum -= m; }
+  std::uint64_t total() const {
+    std::int32_t t = 0;
+    for (int i = 0; i < kTileSize; ++i) t += sum[i];
+    return static_cast<std::uint64_t>(t);
+  }
+};
+
+struct TileDepthPlane {
+  float z_tile, dzdx, dzdy;
+  float at(int i, int j) const { return std::clamp((z_tile + dzdy * j) + dzdx * i, 0.0f, 1.0f); }
+};
+
+// Rasterizes one triangle over tile row `band`. For every row of every tile that it may cover,
+// calls row(first, covered, z, lanes): pixels first .. first + lanes - 1 of the buffers, the mask
+// of those whose centres it covers (-1 or 0; no lane past the image's right edge is set), and its
+// depth there; row returns the mask of those that passed its test, for the counters.
+//
+// Per tile, first the edge test: edge functions are linear, so the tile's corner pixel centres
+// tell whether any pixel centre of the tile can be inside, and whether all are. Then
+// tile_test(hi-z bounds, the triangle's depth range over the tile). Pixels are then tested a
+// tile row at a time with 32-bit edge functions: within a tile that an edge cuts, E = E0 + 256 k,
+// with k = dx j - dy i below 2^28, so E >= 0 exactly when floor(E0 / 256) + k >= 0, and
+// floor(E0 / 256) is itself below 2^28 there.
+template <class TileTest, class Row>
+void raster(const Target& target, const Setup& s, int band, Counters& counters,
+            TileTest&& tile_test, Row&& row) {
+  const int y0 = band * kTileSize, y1 = std::min(target.height, y0 + kTileSize) - 1;
+  int px0 = 0, px1 = 0;
+  if (!columns_in_rows(s, y0, y1, target.width, px0, px1)) return;
+  const float zlo_triangle = std::min({s.v[0].z, s.v[1].z, s.v[2].z}) - kDepthSlack;
+  const float zhi_triangle = std::max({s.v[0].z, s.v[1].z, s.v[2].z}) + kDepthSlack;
+  const int rows = y1 - y0 + 1;
+  const std::size_t width = static_cast<std::size_t>(target.width);  // a local: see draw_counts
+  const float dzdx = static_cast<float>(s.dzdx), dzdy = static_cast<float>(s.dzdy);
+  const Floats dz_lane = dzdx * kLaneOffset;
+  // Per edge: its value at the first pixel of tile px0 / kTileSize in row y0, the step from one
+  // tile to the next, and how far above and below that value the tile's other pixels reach
+  // (taken over whole tiles: at the image's right edge the test is only more cautious).
+  std::int64_t edge[3], tile_step[3], reach_up[3], reach_down[3];
+  for (int k = 0; k < 3; ++k) {
+    const std::int64_t across = std::int64_t{kTileSize - 1} * -s.dy[k] * kSubpixels;
+    const std::int64_t down = std::int64_t{rows - 1} * s.dx[k] * kSubpixels;
+    edge[k] = edge_at(s, k, px0 / kTileSize * kTileSize, y0);
+    tile_step[k] = std::int64_t{kTileSize} * -s.dy[k] * kSubpixels;
+    reach_up[k] = std::max<std::int64_t>(across, 0) + std::max<std::int64_t>(down, 0);
+    reach_down[k] = std::min<std::int64_t>(across, 0) + std::min<std::int64_t>(down, 0);
+  }
+  LaneCount covered_count, passed_count;
+  for (int tx = px0 / kTileSize; tx <= px1 / kTileSize;
+       ++tx, edge[0] += tile_step[0], edge[1] += tile_step[1], edge[2] += tile_step[2]) {
+    const int x0 = tx * kTileSize, lanes = std::min(target.width - x0, kTileSize);
+    if (edge[0] + reach_up[0] < 0 || edge[1] + reach_up[1] < 0 || edge[2] + reach_up[2] < 0)
+      continue;  // outside one edge
+    std::int32_t q[3], step_i[3], step_j[3];
+    for (int k = 0; k < 3; ++k) {
+      // An edge with the whole tile inside is left out of the pixel test (0 is inside).
+      const bool all_inside = edge[k] + reach_down[k] >= 0;
+      q[k] = all_inside ? 0 : static_cast<std::int32_t>(edge[k] >> kSubpixelBits);
+      step_i[k] = all_inside ? 0 : static_cast<std::int32_t>(-s.dy[k]);
+      step_j[k] = all_inside ? 0 : static_cast<std::int32_t>(s.dx[k]);
+    }
+    ++counters.tiles_touched;
+    const TileDepthPlane plane{static_cast<float>(plane_depth(s, x0, y0)), dzdx, dzdy};
+    const float c[4] = {plane.at(0, 0), plane.at(lanes - 1, 0), plane.at(0, rows - 1),
+                        plane.at(lanes - 1, rows - 1)};
+    const float zlo = std::max(zlo_triangle, std::min({c[0], c[1], c[2], c[3]}));
+    const float zhi = std::min(zhi_triangle, std::max({c[0], c[1], c[2], c[3]}));
+    if (!tile_test(target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx], zlo,
+                   zhi)) {
+      ++counters.tiles_skipped;
+      continue;
+    }
+    const Mask e0 = q[0] + step_i[0] * kLaneIndex, e1 = q[1] + step_i[1] * kLaneIndex,
+               e2 = q[2] + step_i[2] * kLaneIndex;
+    const auto rows_of_tile = [&](auto lanes) {
+      const Mask in_image = kLaneIndex < static_cast<int>(lanes);
+      for (int j = 0; j < rows; ++j) {
+        const Mask covered =
+            in_image & (((e0 + step_j[0] * j) | (e1 + step_j[1] * j) | (e2 + step_j[2] * j)) >= 0);
+        if (!any(covered)) continue;
+        const Floats z = (plane.z_tile + dzdy * j) + dz_lane;
+        covered_count.add(covered);
+        passed_count.add(row(static_cast<std::size_t>(y0 + j) * width + x0, covered,
+                             z < 0.0f ? 0.0f : z > 1.0f ? 1.0f : z, lanes));
+      }
+    };
+    if (lanes == kTileSize)
+      rows_of_tile(WholeRow{});
+    else
+      rows_of_tile(lanes);
+  }
+  counters.pixels_processed += covered_count.total();
+  counters.pixels_passed += passed_count.total();
 }
 
 struct Prepared {
@@ -278,46 +374,126 @@ void prepare(const Target& target, std::span<const glm::vec4> triangles, Counter
   }
 }
 
-void add(Counters& to, const Counters& from) {
-  to.tiles_touched += from.tiles_touched;
-  to.tiles_skipped += from.tiles_skipped;
-  to.pixels_processed += from.pixels_processed;
-  to.pixels_passed += from.pixels_passed;
-  to.count_updates += from.count_updates;
+struct BandRange {
+  int first, last;  // tile rows a set-up triangle's bounding box overlaps; last < first: none
+};
+
+}  // namespace
+
+struct Target::Scratch {
+  std::vector<Prepared> prepared;
+  std::vector<BandRange> ranges;
+  std::vector<Counters> band_counters;
+};
+
+Target::Target() = default;
+Target::Target(Target&&) noexcept = default;
+Target& Target::operator=(Target&&) noexcept = default;
+Target::~Target() = default;
+
+Target::Target(int w, int h)
+    : width(w),
+      height(h),
+      tiles_x((w + kTileSize - 1) / kTileSize),
+      tiles_y((h + kTileSize - 1) / kTileSize),
+      depth(static_cast<std::size_t>(w) * h, 1.0f),
+      count(static_cast<std::size_t>(w) * h, 0),
+      id(static_cast<std::size_t>(w) * h, kNoId),
+      tile_depth(static_cast<std::size_t>(tiles_x) * tiles_y) {
+  assert(w > 0 && h > 0 && w <= kMaxViewport && h <= kMaxViewport);
 }
 
-// Rasterizes the prepared triangles band by band (a band is a row of tiles), bands in parallel:
-// each band sees every triangle in order, so a pixel's result does not depend on the threads.
-template <class PerTriangle>
-void for_each_band(const Target& target, const std::vector<Prepared>& prepared, Counters& counters,
-                   PerTriangle&& per_triangle) {
-  std::vector<Counters> band_counters(static_cast<std::size_t>(target.tiles_y));
-  tbb::parallel_for(0, target.tiles_y, [&](int band) {
-    Counters& c = band_counters[static_cast<std::size_t>(band)];
-    const std::int64_t top = std::int64_t{band} * kTileSize * kSubpixels;
-    const std::int64_t bottom = top + std::int64_t{kTileSize} * kSubpixels;
-    for (const Prepared& p : prepared)
-      if (p.setup.max_y >= top && p.setup.min_y < bottom) per_triangle(p, band, c);
+void Target::clear_depth(float z) {
+  std::fill(depth.begin(), depth.end(), z);
+  std::fill(id.begin(), id.end(), kNoId);
+  std::fill(tile_depth.begin(), tile_depth.end(), TileDepth{z, z});
+}
+
+// Both sweep the buffer band by band, in parallel, as the draws use it.
+void Target::clear_count() {
+  tbb::parallel_for(0, tiles_y, [&](int band) {
+    const auto row = [&](int y) { return count.begin() + static_cast<std::ptrdiff_t>(y) * width; };
+    std::fill(row(band * kTileSize), row(std::min(height, (band + 1) * kTileSize)), 0);
   });
-  for (const Counters& c : band_counters) add(counters, c);
+}
+
+void Target::take_nonzero_counts(std::span<std::uint8_t> nonzero) {
+  assert(nonzero.size() == count.size());
+  tbb::parallel_for(0, tiles_y, [&](int band) {
+    const auto first = static_cast<std::size_t>(band) * kTileSize * width;
+    const auto end = std::min(count.size(), first + std::size_t{kTileSize} * width);
+    for (std::size_t p = first; p < end; ++p) {
+      nonzero[p] = count[p] != 0;
+      count[p] = 0;
+    }
+  });
+}
+
+void Target::update_tile_depth() {
+  for (int ty = 0; ty < tiles_y; ++ty)
+    for (int tx = 0; tx < tiles_x; ++tx) {
+      TileDepth bounds{1.0f, 0.0f};
+      for (int y = ty * kTileSize; y < std::min(height, (ty + 1) * kTileSize); ++y)
+        for (int x = tx * kTileSize; x < std::min(width, (tx + 1) * kTileSize); ++x) {
+          const float z = depth[static_cast<std::size_t>(y) * width + x];
+          bounds.zmin = std::min(bounds.zmin, z);
+          bounds.zmax = std::max(bounds.zmax, z);
+        }
+      tile_depth[static_cast<std::size_t>(ty) * tiles_x + tx] = bounds;
+    }
+}
+
+namespace {
+
+Target::Scratch& scratch_of(Target& target) {
+  if (!target.scratch) target.scratch = std::make_unique<Target::Scratch>();
+  return *target.scratch;
+}
+
+// Rasterizes the triangles set up in the scratch band by band (a band is a row of tiles), bands
+// in parallel: each band sees every triangle in order, so a pixel's result does not depend on
+// the threads. Each band scans a compact list of the triangles' band ranges, not their setups.
+template <class PerTriangle>
+void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangle) {
+  Target::Scratch& scratch = scratch_of(target);
+  constexpr std::int64_t kBandHeight = std::int64_t{kTileSize} * kSubpixels;
+  const auto band_of = [](std::int64_t y) {  // floor division: y may be negative
+    return (y >= 0 ? y : y - kBandHeight + 1) / kBandHeight;
+  };
+  scratch.ranges.resize(scratch.prepared.size());
+  for (std::size_t t = 0; t < scratch.prepared.size(); ++t) {
+    const Setup& s = scratch.prepared[t].setup;
+    scratch.ranges[t] = {static_cast<int>(std::clamp<std::int64_t>(band_of(s.min_y), 0, target.tiles_y)),
+                         static_cast<int>(std::clamp<std::int64_t>(band_of(s.max_y), -1, target.tiles_y - 1))};
+  }
+  scratch.band_counters.assign(static_cast<std::size_t>(target.tiles_y), Counters{});
+  tbb::parallel_for(0, target.tiles_y, [&](int band) {
+    Counters& c = scratch.band_counters[static_cast<std::size_t>(band)];
+    for (std::size_t t = 0; t < scratch.prepared.size(); ++t)
+      if (scratch.ranges[t].first <= band && band <= scratch.ranges[t].last)
+        per_triangle(scratch.prepared[t], band, c);
+  });
+  for (const Counters& c : scratch.band_counters) counters += c;
 }
 
 }  // namespace
 
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters) {
-  std::vector<Prepared> prepared;
-  prepare(target, triangles, counters, prepared);
-  for_each_band(target, prepared, counters, [&](const Prepared& p, int band, Counters& c) {
+  prepare(target, triangles, counters, scratch_of(target).prepared);
+  for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     const auto id = static_cast<std::uint32_t>(first_id + p.triangle);
+    float* depth = target.depth.data();
+    std::uint32_t* ids = target.id.data();
     raster(
-        target, p.setup, band, band + 1, c, [](const TileDepth&, float, float) { return true; },
-        [&](std::size_t pixel, float z) {
-          if (z < target.depth[pixel]) {
-            target.depth[pixel] = z;
-            target.id[pixel] = id;
-            ++c.pixels_passed;
-          }
+        target, p.setup, band, c, [](const TileDepth&, float, float) { return true; },
+        [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes) {
+          const Floats stored = load_row<Floats>(depth + first, lanes);
+          const Mask pass = covered & (z < stored);
+          store_row(depth + first, pass ? z : stored, lanes);
+          const Mask old_ids = load_row<Mask>(ids + first, lanes);
+          store_row(ids + first, pass ? Mask{} + static_cast<std::int32_t>(id) : old_ids, lanes);
+          return pass;
         });
   });
 }
@@ -326,29 +502,35 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
                  DepthBounds bounds) {
   assert(weights.size() * 3 == triangles.size());
-  std::vector<Prepared> prepared;
-  prepare(target, triangles, counters, prepared);
+  prepare(target, triangles, counters, scratch_of(target).prepared);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer than some stored depth, z-fail some fragment at or behind one.
   auto tile_test = [rule, bounds](const TileDepth& tile, float zlo, float zhi) {
     if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax) return false;
     return rule == CountRule::zpass ? zlo < tile.zmax : zhi >= tile.zmin;
   };
-  for_each_band(target, prepared, counters, [&](const Prepared& p, int band, Counters& c) {
+  for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     // z-pass: front faces in front of the surface add; z-fail: front faces behind it subtract.
     const std::int32_t facing = p.setup.front ? 1 : -1;
     const std::int32_t delta = (rule == CountRule::zpass ? 1 : -1) * facing * weights[p.triangle];
     if (delta == 0) return;
-    raster(target, p.setup, band, band + 1, c, tile_test, [&](std::size_t pixel, float z) {
-      const float stored = target.depth[pixel];
-      if (stored < bounds.zmin || stored > bounds.zmax) return;
-      const bool in_front = z < stored;
-      if (in_front == (rule == CountRule::zpass)) {
-        target.count[pixel] += delta;
-        ++c.pixels_passed;
-        ++c.count_updates;
-      }
-    });
+    const float* depth = target.depth.data();
+    std::int32_t* count = target.count.data();
+    const bool zpass = rule == CountRule::zpass;
+    const std::uint64_t passed_before = c.pixels_passed;
+    raster(target, p.setup, band, c, tile_test,
+           // By value: the stores into count may alias anything an int32 reference names.
+           [depth, count, bounds, zpass, delta](std::size_t first, const Mask& covered,
+                                                const Floats& z, auto lanes) {
+             const Floats stored = load_row<Floats>(depth + first, lanes);
+             const Mask in_front = z < stored;
+             const Mask pass = covered & (stored >= bounds.zmin) & (stored <= bounds.zmax) &
+                               (zpass ? in_front : ~in_front);
+             store_row(count + first, load_row<Mask>(count + first, lanes) + (pass & delta),
+                       lanes);
+             return pass;
+           });
+    c.count_updates += c.pixels_passed - passed_before;
   });
 }
 

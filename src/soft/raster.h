@@ -5,7 +5,9 @@
 // with a top-left fill rule, the per-pixel depth and signed-count buffers, the per-tile depth
 // bounds (hi-z), and counters of the work done. Each draw sets its triangles up once, then
 // rasterizes bands of one tile row in parallel (oneTBB); every band walks the triangles in order,
-// so results and counters do not depend on the thread count.
+// so results and counters do not depend on the thread count. Within a tile, pixels are tested a
+// tile row (8 pixels) at a time in SIMD vectors: coverage by 32-bit edge functions, depth in
+// float from the tile's first pixel.
 //
 // Conventions:
 //   - Input vertices are in clip space (OpenGL: x, y, z in [-w, w] is inside), produced by an
@@ -23,6 +25,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -58,12 +61,24 @@ struct Target {
   std::vector<std::uint32_t> id;      // what the depth pass left visible: kNoId or an id
   std::vector<TileDepth> tile_depth;  // hi-z, valid after update_tile_depth()
 
-  Target() = default;
+  Target();
   Target(int w, int h);
+  Target(Target&&) noexcept;
+  Target& operator=(Target&&) noexcept;
+  ~Target();
   void clear_depth(float z = 1.0f);  // and the ids
+  // Counts are zero on a new target and after take_nonzero_counts, so that a pass needs no clear.
   void clear_count();
+  // Writes count != 0 per pixel into `nonzero` (width * height bytes, 1 or 0) and leaves every
+  // count zero: one sweep over the buffer instead of a read and a clear.
+  void take_nonzero_counts(std::span<std::uint8_t> nonzero);
   // Recomputes every tile's depth bounds from the depth buffer (after the depth pass).
   void update_tile_depth();
+
+  // What the draws set up, kept between them: on a warm target a draw allocates nothing, and
+  // fresh pages would each cost a page fault.
+  struct Scratch;
+  std::unique_ptr<Scratch> scratch;
 };
 
 // Work counters of one frame or pass (the papers' fill measures). Added, never reset, by the
@@ -73,11 +88,13 @@ struct Counters {
   std::uint64_t triangles_in = 0;
   std::uint64_t triangles_clipped = 0;  // needed clipping (near plane or guard band)
   std::uint64_t triangles_culled = 0;   // nothing left after clipping, or zero area
-  std::uint64_t tiles_touched = 0;      // tiles overlapped by a triangle's bounding box
+  std::uint64_t tiles_touched = 0;      // tiles a triangle may cover (edge test at the corners)
   std::uint64_t tiles_skipped = 0;      // of those, rejected whole by hi-z or depth bounds
   std::uint64_t pixels_processed = 0;   // covered pixels that reached the depth test
   std::uint64_t pixels_passed = 0;      // of those, passed it (an occlusion query's answer)
   std::uint64_t count_updates = 0;      // count buffer writes
+
+  Counters& operator+=(const Counters& other);
 };
 
 // Depth pass: triangles (3 clip-space vertices each), depth test less, depth write, and the

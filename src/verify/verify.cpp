@@ -4,6 +4,27 @@
 #include <cassert>
 
 namespace shadowvol {
+namespace {
+
+// Whether the reference changes, for light l, anywhere in the square between the centres of the
+// neighbours of pixel (x, y): it is sampled every 1 / kSteps pixel.
+bool boundary_between_centres(const ReferenceTracer& tracer, int x, int y, std::size_t l) {
+  constexpr int kSteps = 4;
+  const auto at = [&](int i, int j) {
+    return tracer.sample(x + 0.5 + double(i) / kSteps, y + 0.5 + double(j) / kSteps);
+  };
+  const ReferenceSample first = at(-kSteps, -kSteps);
+  for (int j = -kSteps; j <= kSteps; ++j)
+    for (int i = -kSteps; i <= kSteps; ++i) {
+      const ReferenceSample s = at(i, j);
+      if (s.object != first.object || s.shadowed[l] != first.shadowed[l] ||
+          s.faces_light[l] != first.faces_light[l])
+        return true;
+    }
+  return false;
+}
+
+}  // namespace
 
 Comparison compare(const Frame& frame, const ReferenceFrame& ref) {
   const int w = ref.width, h = ref.height;
@@ -33,6 +54,7 @@ Comparison compare(const Frame& frame, const ReferenceFrame& ref) {
             band =
                 ref.object[q] != ref.object[p] || shadow[q] != shadow[p] || facing[q] != facing[p];
           }
+        if (!band && ref.tracer) band = boundary_between_centres(*ref.tracer, x, y, l);
         c.mismatched_outside_band += !band;
         c.verdict[p] = std::max<std::uint8_t>(c.verdict[p], band ? 1 : 2);
       }

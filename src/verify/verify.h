@@ -3,6 +3,13 @@
 // Owns: the comparison that DESIGN.md's invariant is stated in. On every pixel whose surface
 // faces the light (in the reference), the rendered shadow mask must equal the reference's,
 // except within one pixel of a shadow or silhouette boundary of the reference.
+//
+// "Within one pixel" is decided first from the reference at the pixel's eight neighbours. A
+// boundary can pass between pixel centres without changing any of them: a sliver of shadow or
+// light thinner than a pixel, such as the tip of a self-shadow at a silhouette vertex. So a
+// mismatch with no boundary among its neighbours is looked at again: the reference is traced
+// every quarter pixel over the square between the neighbours' centres, and it is outside the
+// band only if all those samples agree.
 #pragma once
 
 #include <cstddef>

@@ -3,6 +3,7 @@
 // ray-cast, and the hi-z skipping only tiles that hold no work.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -277,6 +278,34 @@ TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
   EXPECT_EQ(empty.id[32 * w + 32], Target::kNoId);
   EXPECT_EQ(inf.pixels_passed, 0u);  // depth 1 is not less than the cleared 1
   EXPECT_GT(inf.pixels_processed, 0u);
+}
+
+// A cap drawn over the surface it came from must meet it at exactly the stored depth, whatever
+// the slope: z-fail counts it at every pixel the surface won, z-pass at none. Then
+// take_nonzero_counts reports those pixels and leaves every count zero.
+TEST(Raster, ATriangleDrawnAgainMeetsItsOwnDepthExactly) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coord(-1.5f, 1.5f), depth(-0.999f, 0.999f);
+  const int w = 83, h = 47;  // neither a multiple of the tile size
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<glm::vec4> tri;
+    for (int k = 0; k < 3; ++k) tri.emplace_back(coord(rng), coord(rng), depth(rng), 1.0f);
+    Target target(w, h);
+    Counters drawn;
+    draw_depth(target, tri, 0, drawn);
+    target.update_tile_depth();
+    Counters zfail, zpass;
+    draw_counts(target, tri, std::vector<std::int32_t>{1}, CountRule::zfail, zfail);
+    draw_counts(target, tri, std::vector<std::int32_t>{1}, CountRule::zpass, zpass);
+    EXPECT_EQ(zfail.count_updates, drawn.pixels_passed) << "trial " << trial;
+    EXPECT_EQ(zpass.count_updates, 0u) << "trial " << trial;
+    std::vector<std::uint8_t> nonzero(static_cast<std::size_t>(w) * h, 7);
+    target.take_nonzero_counts(nonzero);
+    for (std::size_t p = 0; p < nonzero.size(); ++p)
+      ASSERT_EQ(nonzero[p], target.id[p] != Target::kNoId ? 1 : 0) << "pixel " << p;
+    EXPECT_EQ(std::count(target.count.begin(), target.count.end(), 0),
+              static_cast<std::ptrdiff_t>(target.count.size()));
+  }
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
+#include "scene/shapes.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
 
@@ -196,6 +197,71 @@ INSTANTIATE_TEST_SUITE_P(Files, RealMeshes,
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return n;
                          });
+
+// The band counts boundaries thinner than a pixel. A rod out of view casts a shadow about a
+// twentieth of a pixel wide across the ground, so that most of the pixels along it see no
+// shadow at their centres, nor at their neighbours'. A mismatch planted at such a pixel is
+// within one pixel of the shadow, so inside the band; one planted far from it is not.
+TEST(Compare, ShadowsThinnerThanAPixelAreBoundaries) {
+  constexpr int w = 64, h = 36;
+  Scene scene;
+  scene.name = "sliver";
+  scene.camera.position = {0.0f, 3.0f, 0.0f};
+  scene.camera.target = {0.0f, 0.0f, 0.0f};
+  scene.camera.up = {0.0f, 0.0f, -1.0f};
+  scene.objects.push_back(make_object("ground", make_ground(5.0f), glm::mat4(1.0f), glm::vec3(0.8f)));
+  const glm::mat4 rod_transform =
+      glm::rotate(glm::translate(glm::mat4(1.0f), {0.0f, 1.5f, 1.2f}), 0.3f, {0.0f, 1.0f, 0.0f});
+  scene.objects.push_back(make_object(
+      "rod", make_box({-5.0f, -0.0015f, -0.0015f}, {5.0f, 0.0015f, 0.0015f}), rod_transform,
+      glm::vec3(0.5f)));
+  scene.lights.push_back({{0.0f, 10.0f, 6.0f, 1.0f}});
+  auto reference = trace_reference(scene, w, h);
+  ASSERT_TRUE(reference.ok()) << reference.error().message;
+  const ReferenceFrame& ref = *reference;
+  ASSERT_TRUE(ref.tracer);
+  for (std::size_t p = 0; p < ref.object.size(); ++p) ASSERT_EQ(ref.object[p], 0) << "rod in view";
+
+  // Pixels whose neighbourhood, at the centres, is all lit; and whether the shadow passes
+  // within a pixel of them, sampled finely.
+  const auto centres_lit = [&](int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (ref.shadowed[0][static_cast<std::size_t>(y + dy) * w + x + dx]) return false;
+    return true;
+  };
+  const auto shadow_near = [&](int x, int y) {
+    for (int j = -16; j <= 16; ++j)
+      for (int i = -16; i <= 16; ++i)
+        if (ref.tracer->sample(x + 0.5 + i / 16.0, y + 0.5 + j / 16.0).shadowed[0]) return true;
+    return false;
+  };
+  int near_x = -1, near_y = -1, far_x = -1, far_y = -1;
+  for (int y = 1; y + 1 < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      if (!centres_lit(x, y)) continue;
+      const bool near = shadow_near(x, y);
+      if (near && near_x < 0) near_x = x, near_y = y;
+      if (!near && far_x < 0 && std::abs(y - h / 2) > 8) far_x = x, far_y = y;
+    }
+  ASSERT_GE(near_x, 0) << "no pixel misses the sliver at its centres";
+  ASSERT_GE(far_x, 0);
+
+  const auto planted = [&](int x, int y) {
+    Frame frame;
+    frame.object = ref.object;
+    frame.face = ref.face;
+    frame.shadowed = ref.shadowed;
+    frame.shadowed[0][static_cast<std::size_t>(y) * w + x] ^= 1;
+    return compare(frame, ref);
+  };
+  const Comparison near = planted(near_x, near_y);
+  EXPECT_EQ(near.mismatched, 1u);
+  EXPECT_EQ(near.mismatched_outside_band, 0u) << "at " << near_x << ", " << near_y;
+  const Comparison far = planted(far_x, far_y);
+  EXPECT_EQ(far.mismatched, 1u);
+  EXPECT_EQ(far.mismatched_outside_band, 1u) << "at " << far_x << ", " << far_y;
+}
 
 // Parity: the two backends agree on what each pixel shows and whether it is lit, except within
 // one pixel of a boundary (of a shadow or of a surface) in the software frame. Any difference
