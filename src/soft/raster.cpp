@@ -2,6 +2,10 @@
 // Stages named as llvmpipe names them; every constant says where it comes from (raster.h).
 #include "soft/raster.h"
 
+// The tile-row vectors below are passed between functions of this file only, all inlined; GCC's
+// note that a 32-byte vector argument's ABI differs with and without AVX concerns no caller.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include <algorithm>
 #include <array>
 #include <cassert>
