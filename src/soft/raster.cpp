@@ -110,7 +110,7 @@ struct Setup {
   std::int64_t bias[3];  // 0 on top-left edges, -1 elsewhere: the top-left fill rule
   double dzdx, dzdy;     // depth per pixel
   double x_per_y[3];     // edge i's slope dx/dy, 0 for a horizontal edge
-  std::int64_t min_x, max_x, min_y, max_y;  // subpixel bounding box
+  std::int64_t min_y, max_y;  // subpixel rows of the bounding box: which bands it meets
 };
 
 ScreenVertex to_screen(const glm::vec4& c, int width, int height) {
@@ -150,8 +150,6 @@ bool setup(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, 
   const double inv_area = 1.0 / double(s.area2);
   s.dzdx = (z1 * e2y - z2 * e1y) * inv_area * kSubpixels;
   s.dzdy = (z2 * e1x - z1 * e2x) * inv_area * kSubpixels;
-  s.min_x = std::min({s.v[0].x, s.v[1].x, s.v[2].x});
-  s.max_x = std::max({s.v[0].x, s.v[1].x, s.v[2].x});
   s.min_y = std::min({s.v[0].y, s.v[1].y, s.v[2].y});
   s.max_y = std::max({s.v[0].y, s.v[1].y, s.v[2].y});
   return true;
@@ -413,14 +411,7 @@ void Target::clear_depth(float z) {
   std::fill(tile_depth.begin(), tile_depth.end(), TileDepth{z, z});
 }
 
-// Both sweep the buffer band by band, in parallel, as the draws use it.
-void Target::clear_count() {
-  tbb::parallel_for(0, tiles_y, [&](int band) {
-    const auto row = [&](int y) { return count.begin() + static_cast<std::ptrdiff_t>(y) * width; };
-    std::fill(row(band * kTileSize), row(std::min(height, (band + 1) * kTileSize)), 0);
-  });
-}
-
+// Sweeps the buffer band by band, in parallel, as the draws use it.
 void Target::take_nonzero_counts(std::span<std::uint8_t> nonzero) {
   assert(nonzero.size() == count.size());
   tbb::parallel_for(0, tiles_y, [&](int band) {
@@ -467,8 +458,9 @@ void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangl
   scratch.ranges.resize(scratch.prepared.size());
   for (std::size_t t = 0; t < scratch.prepared.size(); ++t) {
     const Setup& s = scratch.prepared[t].setup;
-    scratch.ranges[t] = {static_cast<int>(std::clamp<std::int64_t>(band_of(s.min_y), 0, target.tiles_y)),
-                         static_cast<int>(std::clamp<std::int64_t>(band_of(s.max_y), -1, target.tiles_y - 1))};
+    const std::int64_t first = std::clamp<std::int64_t>(band_of(s.min_y), 0, target.tiles_y);
+    const std::int64_t last = std::clamp<std::int64_t>(band_of(s.max_y), -1, target.tiles_y - 1);
+    scratch.ranges[t] = {static_cast<int>(first), static_cast<int>(last)};
   }
   scratch.band_counters.assign(static_cast<std::size_t>(target.tiles_y), Counters{});
   tbb::parallel_for(0, target.tiles_y, [&](int band) {

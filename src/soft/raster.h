@@ -68,7 +68,6 @@ struct Target {
   ~Target();
   void clear_depth(float z = 1.0f);  // and the ids
   // Counts are zero on a new target and after take_nonzero_counts, so that a pass needs no clear.
-  void clear_count();
   // Writes count != 0 per pixel into `nonzero` (width * height bytes, 1 or 0) and leaves every
   // count zero: one sweep over the buffer instead of a read and a clear.
   void take_nonzero_counts(std::span<std::uint8_t> nonzero);

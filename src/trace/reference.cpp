@@ -81,7 +81,8 @@ Expected<std::shared_ptr<const ReferenceTracer>> ReferenceTracer::create(const S
                                                                          int width, int height) {
   auto state = std::make_unique<State>();
   state->device.reset(rtcNewDevice(nullptr));
-  if (!state->device) return make_error("cannot create an Embree device (is libembree3 installed?)");
+  if (!state->device)
+    return make_error("cannot create an Embree device (is libembree3 installed?)");
   auto built = build(state->device.get(), scene);
   if (!built) return built.error();
   state->scene = std::move(*built);
@@ -123,7 +124,8 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
   if (glm::dot(n, dir) > 0.0) n = -n;  // the side the eye sees
   for (std::size_t l = 0; l < s.lights.size(); ++l) {
     const glm::dvec4& light = s.lights[l];
-    const glm::dvec3 to_light = light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
+    const glm::dvec3 to_light =
+        light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
     const double distance =
         light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
     const glm::dvec3 d = glm::normalize(to_light);

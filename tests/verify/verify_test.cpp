@@ -209,7 +209,8 @@ TEST(Compare, ShadowsThinnerThanAPixelAreBoundaries) {
   scene.camera.position = {0.0f, 3.0f, 0.0f};
   scene.camera.target = {0.0f, 0.0f, 0.0f};
   scene.camera.up = {0.0f, 0.0f, -1.0f};
-  scene.objects.push_back(make_object("ground", make_ground(5.0f), glm::mat4(1.0f), glm::vec3(0.8f)));
+  scene.objects.push_back(
+      make_object("ground", make_ground(5.0f), glm::mat4(1.0f), glm::vec3(0.8f)));
   const glm::mat4 rod_transform =
       glm::rotate(glm::translate(glm::mat4(1.0f), {0.0f, 1.5f, 1.2f}), 0.3f, {0.0f, 1.0f, 0.0f});
   scene.objects.push_back(make_object(
