@@ -15,6 +15,10 @@
 
 #include <tbb/parallel_for.h>
 
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
+
 namespace shadowvol::soft {
 
 Counters& Counters::operator+=(const Counters& other) {
@@ -234,14 +238,20 @@ void store_row(T* p, const V& v, Lanes lanes) {
 }
 using WholeRow = std::integral_constant<int, kTileSize>;
 
-// Whether any lane of a mask is set.
+// Whether any lane of a mask is set: one vptest where the build has AVX.
 inline bool any(const Mask& m) {
+#ifdef __AVX__
+  __m256i v;
+  std::memcpy(&v, &m, sizeof v);
+  return !_mm256_testz_si256(v, v);
+#else
   using Words = std::uint64_t __attribute__((vector_size(sizeof(Mask))));
   Words w;
   std::memcpy(&w, &m, sizeof w);
   std::uint64_t bits = 0;
   for (std::size_t i = 0; i < sizeof(Mask) / sizeof(std::uint64_t); ++i) bits |= w[i];
   return bits != 0;
+#endif
 }
 
 // Adds up masks (-1 per true lane) lane-wise; total() is the number of true lanes seen.
@@ -255,20 +265,28 @@ struct LaneCount {
   }
 };
 
+// What a tile test decides from the tile's depth bounds: no pixel can pass the pass's depth
+// tests, every covered pixel passes them (their stored depths need not be read), or each pixel
+// must be tested.
+enum class TileVerdict { skip, test, accept };
+
 struct TileDepthPlane {
   float z_tile, dzdx, dzdy;
   float at(int i, int j) const { return std::clamp((z_tile + dzdy * j) + dzdx * i, 0.0f, 1.0f); }
 };
 
 // Rasterizes one triangle over tile row `band`. For every row of every tile that it may cover,
-// calls row(first, covered, z, lanes): pixels first .. first + lanes - 1 of the buffers, the mask
-// of those whose centres it covers (-1 or 0; no lane past the image's right edge is set), and its
-// depth there; row returns the mask of those that passed its test, for the counters.
+// calls row(first, covered, z, lanes, decided): pixels first .. first + lanes - 1 of the buffers,
+// the mask of those whose centres it covers (-1 or 0; no lane past the image's right edge is set),
+// its depth there, and std::true_type when the tile test accepted the tile (every covered pixel
+// passes), std::false_type when each must be tested; row returns the mask of those that passed,
+// for the counters.
 //
 // Per tile, first the edge test: edge functions are linear, so the tile's corner pixel centres
-// tell whether any pixel centre of the tile can be inside, and whether all are. Then
-// tile_test(hi-z bounds, the triangle's depth range over the tile). Pixels are then tested a
-// tile row at a time with 32-bit edge functions: within a tile that an edge cuts, E = E0 + 256 k,
+// tell whether any pixel centre of the tile can be inside, and whether all are (then no edge is
+// evaluated per pixel). Then tile_test(hi-z bounds, the triangle's depth range over the tile)
+// gives the tile's TileVerdict. Pixels are then tested a tile row at a time with 32-bit edge
+// functions: within a tile that an edge cuts, E = E0 + 256 k,
 // with k = dx j - dy i below 2^28, so E >= 0 exactly when floor(E0 / 256) + k >= 0, and
 // floor(E0 / 256) is itself below 2^28 there.
 template <class TileTest, class Row>
@@ -283,6 +301,8 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters,
   const std::size_t width = static_cast<std::size_t>(target.width);  // a local: see draw_counts
   const float dzdx = static_cast<float>(s.dzdx), dzdy = static_cast<float>(s.dzdy);
   const Floats dz_lane = dzdx * kLaneOffset;
+  // The depth at the first pixel of tile tx, in double: z_band + dz_tile tx.
+  const double z_band = plane_depth(s, 0, y0), dz_tile = s.dzdx * kTileSize;
   // Per edge: its value at the first pixel of tile px0 / kTileSize in row y0, the step from one
   // tile to the next, and how far above and below that value the tile's other pixels reach
   // (taken over whole tiles: at the image's right edge the test is only more cautious).
@@ -302,42 +322,51 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters,
     if (edge[0] + reach_up[0] < 0 || edge[1] + reach_up[1] < 0 || edge[2] + reach_up[2] < 0)
       continue;  // outside one edge
     std::int32_t q[3], step_i[3], step_j[3];
+    bool interior = true;
     for (int k = 0; k < 3; ++k) {
       // An edge with the whole tile inside is left out of the pixel test (0 is inside).
       const bool all_inside = edge[k] + reach_down[k] >= 0;
+      interior &= all_inside;
       q[k] = all_inside ? 0 : static_cast<std::int32_t>(edge[k] >> kSubpixelBits);
       step_i[k] = all_inside ? 0 : static_cast<std::int32_t>(-s.dy[k]);
       step_j[k] = all_inside ? 0 : static_cast<std::int32_t>(s.dx[k]);
     }
     ++counters.tiles_touched;
-    const TileDepthPlane plane{static_cast<float>(plane_depth(s, x0, y0)), dzdx, dzdy};
+    const TileDepthPlane plane{static_cast<float>(z_band + dz_tile * tx), dzdx, dzdy};
     const float c[4] = {plane.at(0, 0), plane.at(lanes - 1, 0), plane.at(0, rows - 1),
                         plane.at(lanes - 1, rows - 1)};
     const float zlo = std::max(zlo_triangle, std::min({c[0], c[1], c[2], c[3]}));
     const float zhi = std::min(zhi_triangle, std::max({c[0], c[1], c[2], c[3]}));
-    if (!tile_test(target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx], zlo,
-                   zhi)) {
+    const TileVerdict verdict =
+        tile_test(target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx], zlo, zhi);
+    if (verdict == TileVerdict::skip) {
       ++counters.tiles_skipped;
       continue;
     }
     const Mask e0 = q[0] + step_i[0] * kLaneIndex, e1 = q[1] + step_i[1] * kLaneIndex,
                e2 = q[2] + step_i[2] * kLaneIndex;
-    const auto rows_of_tile = [&](auto lanes) {
+    const auto rows_of_tile = [&](auto lanes, auto decided, auto inside) {
       const Mask in_image = kLaneIndex < static_cast<int>(lanes);
       for (int j = 0; j < rows; ++j) {
-        const Mask covered =
-            in_image & (((e0 + step_j[0] * j) | (e1 + step_j[1] * j) | (e2 + step_j[2] * j)) >= 0);
-        if (!any(covered)) continue;
+        Mask covered = in_image;
+        if constexpr (!inside) {
+          covered &= ((e0 + step_j[0] * j) | (e1 + step_j[1] * j) | (e2 + step_j[2] * j)) >= 0;
+          if (!any(covered)) continue;
+        }
         const Floats z = (plane.z_tile + dzdy * j) + dz_lane;
         covered_count.add(covered);
         passed_count.add(row(static_cast<std::size_t>(y0 + j) * width + x0, covered,
-                             z < 0.0f ? 0.0f : z > 1.0f ? 1.0f : z, lanes));
+                             z < 0.0f ? 0.0f : z > 1.0f ? 1.0f : z, lanes, decided));
       }
     };
-    if (lanes == kTileSize)
-      rows_of_tile(WholeRow{});
+    using No = std::false_type;
+    using Yes = std::true_type;
+    if (lanes < kTileSize)
+      rows_of_tile(lanes, No{}, No{});
+    else if (verdict == TileVerdict::accept)
+      interior ? rows_of_tile(WholeRow{}, Yes{}, Yes{}) : rows_of_tile(WholeRow{}, Yes{}, No{});
     else
-      rows_of_tile(lanes);
+      interior ? rows_of_tile(WholeRow{}, No{}, Yes{}) : rows_of_tile(WholeRow{}, No{}, No{});
   }
   counters.pixels_processed += covered_count.total();
   counters.pixels_passed += passed_count.total();
@@ -482,8 +511,10 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
     float* depth = target.depth.data();
     std::uint32_t* ids = target.id.data();
     raster(
-        target, p.setup, band, c, [](const TileDepth&, float, float) { return true; },
-        [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes) {
+        target, p.setup, band, c,
+        [](const TileDepth&, float, float) { return TileVerdict::test; },
+        [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
+                         auto /*decided: never*/) {
           const Floats stored = load_row<Floats>(depth + first, lanes);
           const Mask pass = covered & (z < stored);
           store_row(depth + first, pass ? z : stored, lanes);
@@ -500,10 +531,16 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   assert(weights.size() * 3 == triangles.size());
   prepare(target, triangles, counters, scratch_of(target).prepared);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
-  // some fragment nearer than some stored depth, z-fail some fragment at or behind one.
+  // some fragment nearer than some stored depth, z-fail some fragment at or behind one. It is
+  // accepted whole when every fragment passes against every stored depth, within the bounds.
   auto tile_test = [rule, bounds](const TileDepth& tile, float zlo, float zhi) {
-    if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax) return false;
-    return rule == CountRule::zpass ? zlo < tile.zmax : zhi >= tile.zmin;
+    if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax) return TileVerdict::skip;
+    const bool within_bounds = bounds.zmin <= tile.zmin && tile.zmax <= bounds.zmax;
+    const bool some = rule == CountRule::zpass ? zlo < tile.zmax : zhi >= tile.zmin;
+    const bool all = rule == CountRule::zpass ? zhi < tile.zmin : zlo >= tile.zmax;
+    return !some ? TileVerdict::skip
+           : all && within_bounds ? TileVerdict::accept
+                                  : TileVerdict::test;
   };
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     // z-pass: front faces in front of the surface add; z-fail: front faces behind it subtract.
@@ -517,7 +554,12 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     raster(target, p.setup, band, c, tile_test,
            // By value: the stores into count may alias anything an int32 reference names.
            [depth, count, bounds, zpass, delta](std::size_t first, const Mask& covered,
-                                                const Floats& z, auto lanes) {
+                                                const Floats& z, auto lanes, auto decided) {
+             if constexpr (decided) {
+               store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
+                         lanes);
+               return covered;
+             }
              const Floats stored = load_row<Floats>(depth + first, lanes);
              const Mask in_front = z < stored;
              const Mask pass = covered & (stored >= bounds.zmin) & (stored <= bounds.zmax) &
