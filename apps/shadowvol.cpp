@@ -486,7 +486,8 @@ int info(bool json) {
                                                    {"geometry_shaders", f.geometry_shaders},
                                                    {"occlusion_queries", f.occlusion_queries},
                                                    {"depth_bounds", f.depth_bounds},
-                                                   {"integer_targets", f.integer_targets}};
+                                                   {"integer_targets", f.integer_targets},
+                                                   {"clip_control", f.clip_control}};
   if (json) {
     nlohmann::json out{{"vendor", i.vendor},
                        {"renderer", i.renderer},

@@ -99,8 +99,9 @@ Info query_info() {
   f.occlusion_queries = version >= 15;
   f.depth_bounds = epoxy_has_gl_extension("GL_EXT_depth_bounds_test");
   f.integer_targets = version >= 30;
+  f.clip_control = version >= 45 || epoxy_has_gl_extension("GL_ARB_clip_control");
   if (!f.depth_clamp)
-    f.fallbacks.push_back("no depth clamp: an infinite projection keeps w = 0 vertices at depth 1");
+    f.fallbacks.push_back("no depth clamp: an infinite projection keeps w = 0 vertices at depth 0");
   if (!f.two_sided_stencil)
     f.fallbacks.push_back("no two-sided stencil: volumes are drawn twice, once per facing");
   if (!f.geometry_shaders)

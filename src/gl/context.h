@@ -23,6 +23,7 @@ struct Features {
   bool occlusion_queries = false;  // culling (GL 1.5)
   bool depth_bounds = false;       // EXT_depth_bounds_test (vendor drivers; not llvmpipe)
   bool integer_targets = false;    // R32I targets, for weights other than +-1 (GL 3.0)
+  bool clip_control = false;       // reversed depth, z / w in [0, 1] (GL 4.5 / ARB_clip_control)
   std::vector<std::string> fallbacks;  // one line per missing feature: what is done instead
 };
 

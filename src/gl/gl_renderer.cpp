@@ -369,6 +369,8 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_DEPTH_CLAMP);
   glEnable(GL_DEPTH_TEST);
+  // Reversed depth, as core/projection.h makes it: clip z in [0, w], window depth z / w.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
   // --- depth pass: face ids and the ambient term ---
@@ -383,8 +385,8 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
   glClearNamedFramebufferfv(t.scene.get(), GL_COLOR, 1, zero);
   glDepthMask(GL_TRUE);
   glStencilMask(0xFF);
-  glClearNamedFramebufferfi(t.scene.get(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
-  glDepthFunc(GL_LESS);
+  glClearNamedFramebufferfi(t.scene.get(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  glDepthFunc(GL_GREATER);  // nearer is greater
   const bool cpu = settings_.volumes == VolumePath::cpu;
   glUseProgram(surface_depth_[cpu ? 0 : 1].get());
   glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
@@ -462,11 +464,11 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
     // Sets up one draw of weight sign `sign` under `rule`.
     auto count_state = [&](Rule rule, int sign) {
       if (additive) {
-        glDepthFunc(rule == Rule::zpass ? GL_LESS : GL_GEQUAL);
+        glDepthFunc(rule == Rule::zpass ? GL_GREATER : GL_LEQUAL);
         glUniform1f(glsl::kRuleSign, static_cast<float>(rule == Rule::zpass ? sign : -sign));
         return;
       }
-      glDepthFunc(GL_LESS);
+      glDepthFunc(GL_GREATER);
       const GLenum up = sign > 0 ? GL_INCR_WRAP : GL_DECR_WRAP;
       const GLenum down = sign > 0 ? GL_DECR_WRAP : GL_INCR_WRAP;
       if (rule == Rule::zpass) {
@@ -480,7 +482,7 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
     glUseProgram(cpu ? volume_cpu_.get() : volume_gpu_.get());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       const Rule rule = plan.zfail[l][o] ? Rule::zfail : Rule::zpass;
-      // z-fail's dark caps lie on w = 0, where rounding may push a depth past 1: clamp rather
+      // z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: clamp rather
       // than clip. (z-pass keeps near-plane clipping, as the software backend does.)
       if (rule == Rule::zfail)
         glEnable(GL_DEPTH_CLAMP);
@@ -587,7 +589,7 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
     }
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(GL_GREATER);
     glFinish();
     stats.ms_shade += ms_since(start);
   }

@@ -41,10 +41,10 @@ bool may_shadow_near_plane(const glm::vec3& centre, float radius,
 }
 
 // Draws the segment a-b (clip space, w >= 0 allowed at one end) over the image, blended: clipped
-// to the near plane (z >= -w) in homogeneous space, so that a ray to infinity ends at its
+// to the near plane (z <= w) in homogeneous space, so that a ray to infinity ends at its
 // vanishing point, then stepped pixel by pixel within the viewport.
 void overlay_segment(Image& img, glm::vec4 a, glm::vec4 b, const glm::vec3& color) {
-  const float da = a.z + a.w, db = b.z + b.w;
+  const float da = a.w - a.z, db = b.w - b.z;
   if (da < 0.0f && db < 0.0f) return;
   if (da < 0.0f) a = a + (b - a) * (da / (da - db));
   if (db < 0.0f) b = b + (a - b) * (db / (db - da));
@@ -96,7 +96,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   std::array<glm::vec3, 4> near_rect;
   for (int i = 0; i < 4; ++i) {
     const glm::vec4 c =
-        plan.inv_view_proj * glm::vec4(i == 1 || i == 2 ? 1 : -1, i >= 2 ? 1 : -1, -1, 1);
+        plan.inv_view_proj * glm::vec4(i == 1 || i == 2 ? 1 : -1, i >= 2 ? 1 : -1, 1, 1);
     near_rect[i] = glm::vec3(c) / c.w;
   }
   struct Sphere {

@@ -89,12 +89,11 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
         clip_volume(v.light_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
         clip_volume(v.dark_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
       }
-      // Depth bounds: the volume's nearest window depth (a triangle's depth is affine on the
-      // screen, so its range is its vertices'; one behind the near plane reaches depth 0).
-      soft::DepthBounds bounds{1.0f, 1.0f};
+      // Depth bounds: up to the volume's nearest window depth (a triangle's depth is affine on
+      // the screen, so its range is its vertices'; one before the near plane reaches depth 1).
+      soft::DepthBounds bounds{0.0f, 0.0f};
       for (const glm::vec4& c : tris)
-        bounds.zmin =
-            std::min(bounds.zmin, c.w <= 0.0f || c.z < -c.w ? 0.0f : (c.z / c.w + 1.0f) * 0.5f);
+        bounds.zmax = std::max(bounds.zmax, c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w);
       soft::draw_counts(target_, tris, weights,
                         zfail ? soft::CountRule::zfail : soft::CountRule::zpass, stats.counts,
                         bounds);
@@ -127,7 +126,7 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
         const float len = glm::length(n);
         n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
         const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0,
-                             double(target_.depth[p]) * 2.0 - 1.0, 1.0);
+                             double(target_.depth[p]), 1.0);
         const glm::dvec4 at = inv_vp * ndc;
         const glm::vec3 pos = glm::vec3(glm::dvec3(at) / at.w);
         const glm::vec3 to_eye = glm::normalize(-pos);  // the eye is the origin

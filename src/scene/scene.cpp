@@ -5,11 +5,11 @@
 #include <utility>
 
 #include <glm/common.hpp>
-#include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/projection.h"
 #include "scene/shapes.h"
 
 namespace shadowvol {
@@ -28,7 +28,7 @@ glm::vec4 eye_relative(const glm::vec4& point, const glm::vec3& eye) {
 }
 
 glm::mat4 Camera::projection(float aspect) const {
-  return glm::infinitePerspective(glm::radians(fov_y_degrees), aspect, near);
+  return infinite_reversed_perspective(glm::radians(fov_y_degrees), aspect, near);
 }
 
 Scene scene_at_frame(const Scene& scene, int frame) {

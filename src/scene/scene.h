@@ -61,7 +61,8 @@ struct Camera {
   // DESIGN.md "Numerics": geo-referenced models sit 1e5-1e6 units out, where float leaves
   // centimetre steps; subtracting the eye in double first keeps every pixel exact.
   glm::mat4 view_from_eye() const;
-  // Infinite-far OpenGL projection (Everitt & Kilgard 2002): points at infinity reach depth 1.
+  // The project's projection, core/projection.h: infinite far, reversed depth (1 at the near
+  // plane, 0 at infinity).
   glm::mat4 projection(float aspect) const;
 };
 

@@ -37,14 +37,14 @@ namespace {
 
 // --- clip ---------------------------------------------------------------------------------
 
-// Signed distances to the clip planes, >= 0 inside: near (z >= -w), the four guard-band planes,
+// Signed distances to the clip planes, >= 0 inside: near (z <= w), the four guard-band planes,
 // and w > 0 (which a proper projection never reaches once the near plane has clipped; it keeps
 // the division safe whatever the caller passes).
 constexpr int kPlanes = 6;
 inline float plane_distance(int plane, const glm::vec4& v) {
   switch (plane) {
     case 0:
-      return v.z + v.w;
+      return v.w - v.z;
     case 1:
       return kGuardBand * v.w - v.x;
     case 2:
@@ -121,7 +121,7 @@ ScreenVertex to_screen(const glm::vec4& c, int width, int height) {
   const double inv_w = 1.0 / c.w;
   const double sx = (c.x * inv_w + 1.0) * 0.5 * width * kSubpixels;
   const double sy = (1.0 - c.y * inv_w) * 0.5 * height * kSubpixels;
-  const double z = (c.z * inv_w + 1.0) * 0.5;
+  const double z = c.z * inv_w;
   return {std::llround(sx), std::llround(sy), static_cast<float>(std::clamp(z, 0.0, 1.0))};
 }
 
@@ -427,7 +427,7 @@ Target::Target(int w, int h)
       height(h),
       tiles_x((w + kTileSize - 1) / kTileSize),
       tiles_y((h + kTileSize - 1) / kTileSize),
-      depth(static_cast<std::size_t>(w) * h, 1.0f),
+      depth(static_cast<std::size_t>(w) * h, 0.0f),
       count(static_cast<std::size_t>(w) * h, 0),
       id(static_cast<std::size_t>(w) * h, kNoId),
       tile_depth(static_cast<std::size_t>(tiles_x) * tiles_y) {
@@ -516,7 +516,7 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
         [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
                          auto /*decided: never*/) {
           const Floats stored = load_row<Floats>(depth + first, lanes);
-          const Mask pass = covered & (z < stored);
+          const Mask pass = covered & (z > stored);
           store_row(depth + first, pass ? z : stored, lanes);
           const Mask old_ids = load_row<Mask>(ids + first, lanes);
           store_row(ids + first, pass ? Mask{} + static_cast<std::int32_t>(id) : old_ids, lanes);
@@ -531,13 +531,14 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   assert(weights.size() * 3 == triangles.size());
   prepare(target, triangles, counters, scratch_of(target).prepared);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
-  // some fragment nearer than some stored depth, z-fail some fragment at or behind one. It is
-  // accepted whole when every fragment passes against every stored depth, within the bounds.
+  // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
+  // one. It is accepted whole when every fragment passes against every stored depth, within the
+  // bounds.
   auto tile_test = [rule, bounds](const TileDepth& tile, float zlo, float zhi) {
     if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax) return TileVerdict::skip;
     const bool within_bounds = bounds.zmin <= tile.zmin && tile.zmax <= bounds.zmax;
-    const bool some = rule == CountRule::zpass ? zlo < tile.zmax : zhi >= tile.zmin;
-    const bool all = rule == CountRule::zpass ? zhi < tile.zmin : zlo >= tile.zmax;
+    const bool some = rule == CountRule::zpass ? zhi > tile.zmin : zlo <= tile.zmax;
+    const bool all = rule == CountRule::zpass ? zlo > tile.zmax : zhi <= tile.zmin;
     return !some ? TileVerdict::skip
            : all && within_bounds ? TileVerdict::accept
                                   : TileVerdict::test;
@@ -561,7 +562,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                return covered;
              }
              const Floats stored = load_row<Floats>(depth + first, lanes);
-             const Mask in_front = z < stored;
+             const Mask in_front = z > stored;
              const Mask pass = covered & (stored >= bounds.zmin) & (stored <= bounds.zmax) &
                                (zpass ? in_front : ~in_front);
              store_row(count + first, load_row<Mask>(count + first, lanes) + (pass & delta),

@@ -10,15 +10,15 @@
 // float from the tile's first pixel.
 //
 // Conventions:
-//   - Input vertices are in clip space (OpenGL: x, y, z in [-w, w] is inside), produced by an
-//     infinite-far projection (Everitt & Kilgard 2002): a point at infinity (w = 0 in eye space)
-//     lands exactly on depth 1, so the far plane never clips and the only clip plane that changes
-//     what is drawn is the near plane z >= -w. Guard-band planes |x|, |y| <= kGuardBand * w keep
+//   - Input vertices are in clip space as core/projection.h makes it: x, y in [-w, w] and z in
+//     [0, w] inside, infinite far, reversed depth. A point at infinity (w = 0 in eye space) lands
+//     exactly on depth 0, so the far plane never clips and the only clip plane that changes what
+//     is drawn is the near plane z <= w. Guard-band planes |x|, |y| <= kGuardBand * w keep
 //     snapped coordinates inside the fixed-point range; they lie outside the viewport and change
 //     no pixel.
-//   - Window coordinates: x right, y down (row 0 is the top of the image); depth (z / w + 1) / 2
-//     in [0, 1], 1 at infinity. A pixel is covered when its centre is inside the triangle, by the
-//     top-left rule on its edges.
+//   - Window coordinates: x right, y down (row 0 is the top of the image); depth z / w in [0, 1],
+//     1 on the near plane and 0 at infinity: nearer is greater. A pixel is covered when its
+//     centre is inside the triangle, by the top-left rule on its edges.
 //   - Facing: a triangle whose vertices run counter-clockwise as seen by the viewer (OpenGL's
 //     default front face) is front-facing.
 #pragma once
@@ -47,8 +47,8 @@ inline constexpr int kTileSize = 8;
 // Depth bounds of the pixels of one tile, the hi-z. Two floats, 8 bytes: one cache line holds
 // the bounds of eight tiles, a row of 64 pixels.
 struct TileDepth {
-  float zmin = 1.0f;
-  float zmax = 1.0f;
+  float zmin = 0.0f;
+  float zmax = 0.0f;
 };
 
 // The buffers of one frame. Row-major, row 0 at the top.
@@ -56,7 +56,7 @@ struct Target {
   static constexpr std::uint32_t kNoId = 0xffffffffu;
   int width = 0, height = 0;
   int tiles_x = 0, tiles_y = 0;
-  std::vector<float> depth;           // window depth, 1 = far (infinity)
+  std::vector<float> depth;           // window depth, 0 = far (infinity)
   std::vector<std::int32_t> count;    // signed shadow-volume count
   std::vector<std::uint32_t> id;      // what the depth pass left visible: kNoId or an id
   std::vector<TileDepth> tile_depth;  // hi-z, valid after update_tile_depth()
@@ -66,7 +66,7 @@ struct Target {
   Target(Target&&) noexcept;
   Target& operator=(Target&&) noexcept;
   ~Target();
-  void clear_depth(float z = 1.0f);  // and the ids
+  void clear_depth(float z = 0.0f);  // and the ids
   // Counts are zero on a new target and after take_nonzero_counts, so that a pass needs no clear.
   // Writes count != 0 per pixel into `nonzero` (width * height bytes, 1 or 0) and leaves every
   // count zero: one sweep over the buffer instead of a read and a clear.
@@ -96,8 +96,8 @@ struct Counters {
   Counters& operator+=(const Counters& other);
 };
 
-// Depth pass: triangles (3 clip-space vertices each), depth test less, depth write, and the
-// id first_id + t of triangle t written where it passes. Both facings are drawn.
+// Depth pass: triangles (3 clip-space vertices each), depth test greater (nearer), depth write,
+// and the id first_id + t of triangle t written where it passes. Both facings are drawn.
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters);
 
@@ -108,7 +108,7 @@ enum class CountRule {
 };
 
 // A depth-bounds test (EXT_depth_bounds_test; McGuire et al. 2003): pixels whose stored depth
-// lies outside [zmin, zmax] are left alone. For a shadow volume, [its nearest depth, 1]: a
+// lies outside [zmin, zmax] are left alone. For a shadow volume, [0, its nearest depth]: a
 // surface in front of the whole volume is outside it, and under z-fail would otherwise be
 // touched by every primitive only for their counts to cancel.
 struct DepthBounds {

@@ -102,10 +102,10 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
   out.faces_light.assign(s.lights.size(), 0);
   out.shadowed.assign(s.lights.size(), 0);
   // The ray through NDC (x / w * 2 - 1, 1 - y / h * 2), from the eye (eye-relative space: the
-  // origin).
-  const glm::dvec4 far = s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0,
-                                                      1.0 - y / s.height * 2.0, 0.0, 1.0);
-  const glm::dvec3 dir = glm::normalize(glm::dvec3(far) / far.w);
+  // origin) through that point of the near plane (depth 1).
+  const glm::dvec4 on_near = s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0,
+                                                          1.0 - y / s.height * 2.0, 1.0, 1.0);
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(on_near) / on_near.w);
   if (!std::isfinite(dir.x) || !std::isfinite(dir.y) || !std::isfinite(dir.z)) return out;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

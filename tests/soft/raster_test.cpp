@@ -7,18 +7,18 @@
 #include <cmath>
 #include <random>
 
-#include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/projection.h"
 #include "soft/raster.h"
 
 namespace shadowvol::soft {
 namespace {
 
-// A triangle list in clip space straight from NDC x, y (z = 0, w = 1).
+// A triangle list in clip space straight from NDC x, y (depth z = 0.5, w = 1).
 void add_ndc(std::vector<glm::vec4>& out, glm::vec2 a, glm::vec2 b, glm::vec2 c) {
-  out.insert(out.end(), {glm::vec4(a, 0, 1), glm::vec4(b, 0, 1), glm::vec4(c, 0, 1)});
+  out.insert(out.end(), {glm::vec4(a, 0.5f, 1), glm::vec4(b, 0.5f, 1), glm::vec4(c, 0.5f, 1)});
 }
 
 // Counts each triangle once, +1 front, -1 back, on an empty depth buffer (every fragment passes).
@@ -134,7 +134,7 @@ TEST(Raster, BackFacesSubtractAndTheSharedEdgeIsDrawnOnce) {
 TEST(Raster, ClipsAtTheNearPlaneAndDrawsVerticesAtInfinity) {
   const int w = 80, h = 60;
   const float near = 0.1f;
-  const glm::mat4 proj = glm::infinitePerspective(glm::radians(70.0f), float(w) / h, near);
+  const glm::mat4 proj = infinite_reversed_perspective(glm::radians(70.0f), float(w) / h, near);
   struct Case {
     glm::vec4 eye[3];  // eye space, homogeneous
     bool crosses_near;
@@ -189,7 +189,7 @@ TEST(Raster, ClipsAtTheNearPlaneAndDrawsVerticesAtInfinity) {
 // shared edges, and the cut must leave neither gaps nor overlaps.
 TEST(Raster, NearPlaneCutsKeepAMeshWatertight) {
   const int w = 96, h = 64, n = 24;
-  const glm::mat4 proj = glm::infinitePerspective(glm::radians(75.0f), float(w) / h, 0.05f);
+  const glm::mat4 proj = infinite_reversed_perspective(glm::radians(75.0f), float(w) / h, 0.05f);
   const glm::mat4 view = glm::rotate(glm::mat4(1.0f), 0.5f, glm::vec3(1, 0, 0));  // look down
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> jitter(-0.4f, 0.4f);
@@ -221,7 +221,7 @@ TEST(Raster, NearPlaneCutsKeepAMeshWatertight) {
       const std::int32_t c = target.count[py * w + px];
       ASSERT_LE(std::abs(c), 1) << px << "," << py;
       const glm::vec2 ndc = ndc_of_pixel(px, py, w, h);
-      const glm::vec4 a = inv * glm::vec4(ndc, -1.0f, 1.0f), b = inv * glm::vec4(ndc, 0.5f, 1.0f);
+      const glm::vec4 a = inv * glm::vec4(ndc, 1.0f, 1.0f), b = inv * glm::vec4(ndc, 0.5f, 1.0f);
       const glm::vec3 from = glm::vec3(a) / a.w, to = glm::vec3(b) / b.w;
       const glm::vec3 d = to - from;
       if (d.y >= 0.0f) continue;
@@ -234,18 +234,18 @@ TEST(Raster, NearPlaneCutsKeepAMeshWatertight) {
   EXPECT_GT(checked, w * h / 4);
 }
 
-TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
+TEST(Raster, DepthOfAPointAtInfinityIsZeroAndTheHiZSkipsOnlyIdleTiles) {
   const int w = 64, h = 64;
-  const glm::mat4 proj = glm::infinitePerspective(glm::radians(60.0f), 1.0f, 0.1f);
+  const glm::mat4 proj = infinite_reversed_perspective(glm::radians(60.0f), 1.0f, 0.1f);
   Target target(w, h);
   Counters counters;
-  // A wall at eye depth 5 over the whole view: depth everywhere about 1 - 2 * 0.1 / 5 / 2.
+  // A wall at eye depth 5 over the whole view: depth everywhere near / distance = 0.1 / 5.
   std::vector<glm::vec4> wall = {proj * glm::vec4(-50, -50, -5, 1),
                                  proj * glm::vec4(50, -50, -5, 1), proj * glm::vec4(0, 50, -5, 1)};
   draw_depth(target, wall, 7, counters);
   EXPECT_EQ(target.id[32 * w + 32], 7u);
   target.update_tile_depth();
-  EXPECT_NEAR(target.depth[32 * w + 32], 1.0f - 0.1f / 5.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(target.depth[32 * w + 32], 0.1f / 5.0f);
   // A triangle far behind the wall: z-pass cannot change any pixel, so every tile is skipped.
   std::vector<glm::vec4> behind = {proj * glm::vec4(-1, -1, -50, 1),
                                    proj * glm::vec4(1, -1, -50, 1), proj * glm::vec4(0, 1, -50, 1)};
@@ -264,11 +264,11 @@ TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
   Counters bounded;
   const std::vector<std::int32_t> before = target.count;
   draw_counts(target, behind, std::vector<std::int32_t>{1}, CountRule::zfail, bounded,
-              DepthBounds{0.995f, 1.0f});
+              DepthBounds{0.5f, 1.0f});
   EXPECT_EQ(bounded.count_updates, 0u);
   EXPECT_EQ(bounded.tiles_skipped, bounded.tiles_touched);
   EXPECT_EQ(target.count, before);
-  // A triangle at infinity (all w = 0) lies at depth 1: behind the wall for z-fail too.
+  // A triangle at infinity (all w = 0) lies at depth 0, the cleared depth: never nearer.
   std::vector<glm::vec4> at_infinity = {proj * glm::vec4(-1, -1, -5, 0),
                                         proj * glm::vec4(1, -1, -5, 0),
                                         proj * glm::vec4(0, 1, -5, 0)};
@@ -276,8 +276,29 @@ TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
   Counters inf;
   draw_depth(empty, at_infinity, 0, inf);
   EXPECT_EQ(empty.id[32 * w + 32], Target::kNoId);
-  EXPECT_EQ(inf.pixels_passed, 0u);  // depth 1 is not less than the cleared 1
+  EXPECT_EQ(inf.pixels_passed, 0u);  // depth 0 is not greater than the cleared 0
   EXPECT_GT(inf.pixels_processed, 0u);
+}
+
+// Reversed depth keeps float's relative precision far away: two walls 1000 and 1000.01 units
+// out (near 0.1) are 1e-9 apart in the conventional depth 1 - near / distance, below its float
+// steps near 1 (6e-8), but 1e-9 of 1e-4 in near / distance, a hundred thousand steps apart.
+TEST(Raster, WallsAHundredthApartAThousandUnitsOutAreResolved) {
+  const int w = 32, h = 32;
+  const glm::mat4 proj = infinite_reversed_perspective(glm::radians(60.0f), 1.0f, 0.1f);
+  const auto wall = [&](float distance) {
+    const float r = 2.0f * distance;  // wider than the view
+    return std::vector<glm::vec4>{proj * glm::vec4(-r, -r, -distance, 1),
+                                  proj * glm::vec4(r, -r, -distance, 1),
+                                  proj * glm::vec4(0, r, -distance, 1)};
+  };
+  for (const bool far_first : {true, false}) {
+    Target target(w, h);
+    Counters counters;
+    draw_depth(target, wall(far_first ? 1000.01f : 1000.0f), far_first ? 1 : 2, counters);
+    draw_depth(target, wall(far_first ? 1000.0f : 1000.01f), far_first ? 2 : 1, counters);
+    for (const std::uint32_t id : target.id) ASSERT_EQ(id, 2u) << "the nearer wall (id 2) wins";
+  }
 }
 
 // A cap drawn over the surface it came from must meet it at exactly the stored depth, whatever
@@ -285,7 +306,7 @@ TEST(Raster, DepthOfAPointAtInfinityIsOneAndTheHiZSkipsOnlyIdleTiles) {
 // take_nonzero_counts reports those pixels and leaves every count zero.
 TEST(Raster, ATriangleDrawnAgainMeetsItsOwnDepthExactly) {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<float> coord(-1.5f, 1.5f), depth(-0.999f, 0.999f);
+  std::uniform_real_distribution<float> coord(-1.5f, 1.5f), depth(0.001f, 0.999f);
   const int w = 83, h = 47;  // neither a multiple of the tile size
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<glm::vec4> tri;
