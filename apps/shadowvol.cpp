@@ -226,7 +226,9 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_
   cmd->add_option("--scene", args.scene,
                   "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
       ->capture_default_str();
-  cmd->add_option("--method", args.method, "zpass, zfail or auto (per object)")
+  cmd->add_option("--method", args.method,
+                  "zpass, zfail, auto (per object) or spsv (per tile, by a split plane; soft "
+                  "backend)")
       ->capture_default_str();
   cmd->add_option("--generator", args.generator, "standard, robust, multiplicity or auto")
       ->capture_default_str();
@@ -271,6 +273,15 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   auto backend = parse_backend(args.backend);
   if (!backend) return make_error("--backend: " + backend.error().message);
+  if (*method == Method::split_plane) {  // the split test is per tile of the soft rasterizer
+    if (*backend == Backend::gl)
+      return make_error("--method spsv runs in the soft backend only (its split test is made per "
+                        "tile of the software rasterizer); use --backend soft");
+    if (*backend == Backend::automatic)
+      std::cerr << "shadowvol: backend auto: soft, since --method spsv runs in the soft backend "
+                   "only\n";
+    *backend = Backend::soft;
+  }
   auto volumes = gl::parse_volume_path(args.volumes);
   if (!volumes) return make_error("--volumes: " + volumes.error().message);
   auto counts = gl::parse_count_target(args.counts);
@@ -324,10 +335,10 @@ int render(const RenderArgs& args) {
     std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms, read-back %.1f ms\n",
                 s.ms_depth, s.ms_volumes, s.ms_counts, s.ms_shade, s.ms_readback);
     std::printf(
-        "  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d, "
-        "volumes built %d, reused %d\n",
-        s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.volumes_built,
-        s.volumes_reused);
+        "  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d, by a split "
+        "plane %d, volumes built %d, reused %d\n",
+        s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
+        s.volumes_built, s.volumes_reused);
     if ((*renderer)->backend() == "soft")
     std::printf(
         "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
@@ -393,6 +404,8 @@ int verify(const VerifyArgs& args) {
 }
 
 int view(const FrameArgs& frame, int frames, const std::string& screenshot) {
+  if (frame.method == to_string(Method::split_plane))
+    return fail("--method spsv runs in the soft backend only; the viewer draws with OpenGL");
   auto resolved = resolve(frame);
   if (!resolved) return fail(resolved.error().message);
   if (frames < 0) return fail("--frames: " + std::to_string(frames) + " is not a count");

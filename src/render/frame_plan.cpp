@@ -40,6 +40,19 @@ bool may_shadow_near_plane(const glm::vec3& centre, float radius,
   return true;
 }
 
+// Laine 2005 §4.1, Eq. 4, eye-relative (the camera at the origin): the plane through the
+// volume's centre line (from the light through p, or along a directional light) that is
+// orthogonal to the plane of that line and the camera, so that it splits the volume in halves
+// as the camera sees them. Degenerate (zero) when the camera lies on the centre line, which the
+// split test reads as z-fail everywhere: still exact.
+glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light) {
+  const glm::dvec3 centre(p);
+  const glm::dvec3 along = light.w != 0.0f ? centre - glm::dvec3(light) / double(light.w)
+                                           : -glm::dvec3(light);
+  const glm::dvec3 normal = glm::cross(glm::cross(-centre, along), along);
+  return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, centre)));
+}
+
 // Draws the segment a-b (clip space, w >= 0 allowed at one end) over the image, blended: clipped
 // to the near plane (z <= w) in homogeneous space, so that a ray to infinity ends at its
 // vanishing point, then stepped pixel by pixel within the viewport.
@@ -104,7 +117,9 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     float radius;
   };
   std::vector<Sphere> bounds(objects);
-  if (options.method == Method::automatic)
+  const bool per_object =
+      options.method == Method::automatic || options.method == Method::split_plane;
+  if (per_object)
     for (std::size_t o = 0; o < objects; ++o) {
       glm::vec3 lo(INFINITY), hi(-INFINITY);
       for (const glm::vec3& p : scene.objects[o].topology->positions) {
@@ -115,15 +130,19 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
       bounds[o] = {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f};
     }
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
+  plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
   stats.zfail_lights.assign(objects, 0);
+  const glm::mat4 plane_to_clip = glm::transpose(plan.inv_view_proj);  // planes map by M^-T
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
     for (std::size_t o = 0; o < objects; ++o) {
       const bool zfail =
-          options.method == Method::automatic
+          per_object
               ? may_shadow_near_plane(bounds[o].centre, bounds[o].radius, near_rect, plan.lights[l])
               : options.method == Method::zfail;
       plan.zfail[l][o] = zfail;
-      (zfail ? stats.objects_zfail : stats.objects_zpass) += 1;
+      if (options.method == Method::split_plane && !zfail)
+        plan.split[l][o] = plane_to_clip * point_camera_light(bounds[o].centre, plan.lights[l]);
+      (zfail ? stats.objects_zfail : plan.split[l][o] ? stats.objects_split : stats.objects_zpass) += 1;
       stats.zfail_lights[o] += zfail;
     }
   return plan;
@@ -143,7 +162,7 @@ std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
     const glm::vec4 object_light = object_space_light(object, scene.lights[light].position);
-    const VolumeOptions options{generator, static_cast<bool>(plan.zfail[light][o])};
+    const VolumeOptions options{generator, plan.caps(light, o)};
     Entry& c = cache[o];
     if (c.topology == object.topology && c.light == object_light &&
         c.options.generator == options.generator && c.options.caps == options.caps) {

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -34,6 +35,13 @@ struct FramePlan {
   // than there are objects, the total.
   std::vector<std::uint32_t> first_id;
   std::vector<std::vector<bool>> zfail;  // [light][object]: draw this volume by z-fail
+  // [light][object]: under Method::split_plane, the volume's split plane in clip space (Laine
+  // 2005 §4.1, Point-Camera-Light); none where the volume is drawn by one rule whole.
+  std::vector<std::vector<std::optional<glm::vec4>>> split;
+
+  // Whether the volume of object o for light l needs its caps: z-fail counts them, and so do a
+  // split plane's z-fail tiles.
+  bool caps(std::size_t l, std::size_t o) const { return zfail[l][o] || split[l][o].has_value(); }
 
   // (object, face) of a depth-pass id, or object -1 when the id is past the last face.
   std::pair<std::int32_t, std::uint32_t> object_of(std::uint32_t id) const;
@@ -41,7 +49,8 @@ struct FramePlan {
 
 // Decides everything above for this scene and these options. `auto` takes z-fail for an object
 // only where its bounding sphere may put part of the near-plane rectangle in its shadow
-// (GPU Gems 3 §11.2.3). Counts the objects of each method into stats.
+// (GPU Gems 3 §11.2.3); `spsv` takes a split plane there instead of z-pass. Counts the objects
+// of each method into stats.
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
 
 // The light in the object's own space (the inverse of its transform, in double), where its

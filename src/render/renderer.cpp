@@ -14,12 +14,15 @@ std::string_view to_string(Method method) {
       return "zfail";
     case Method::automatic:
       return "auto";
+    case Method::split_plane:
+      return "spsv";
   }
   return "unknown";
 }
 
 Expected<Method> parse_method(std::string_view name) {
-  return parse_name(name, {Method::zpass, Method::zfail, Method::automatic}, "method");
+  return parse_name(name, {Method::zpass, Method::zfail, Method::automatic, Method::split_plane},
+                    "method");
 }
 
 Expected<void> check_options(const RenderOptions& options) {

@@ -24,6 +24,10 @@ enum class Method : std::uint8_t {
   zpass,      // count volume faces in front of the surface; wrong when the eye is in a volume
   zfail,      // count those behind it (needs caps); right everywhere
   automatic,  // per object: z-pass unless its volume may reach the near plane (GPU Gems 3 §11.2.3)
+  // Per tile: z-pass or z-fail by the side of a split plane through the volume (Laine 2005;
+  // software backend only). Where a volume may reach the near plane it takes z-fail whole, until
+  // the near-plane pre-fill (ZP+) that z-pass tiles would need there is built.
+  split_plane,
 };
 std::string_view to_string(Method method);
 Expected<Method> parse_method(std::string_view name);
@@ -49,6 +53,7 @@ struct FrameStats {
   std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
   std::size_t volume_primitives = 0;          // over all lights
   int objects_zpass = 0, objects_zfail = 0;   // over all lights
+  int objects_split = 0;                      // over all lights: drawn by a split plane
   std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for
   int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work
   soft::Counters depth, counts;

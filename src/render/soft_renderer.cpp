@@ -4,6 +4,8 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <span>
 #include <tuple>
 
 #include <tbb/parallel_for.h>
@@ -79,13 +81,14 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
     std::vector<std::int32_t> weights;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       const VolumeBuffer& v = volumes_.volume(l, o);
-      const bool zfail = plan.zfail[l][o];
+      const std::optional<glm::vec4>& split = plan.split[l][o];
       stats.volume_primitives += v.primitive_count();
       const glm::mat4 mvp = plan.view_proj * plan.model[o];
       tris.clear();
       weights.clear();
       clip_volume(v.sides, kQuadCorners, mvp, plan.weight_sign[o], tris, weights);
-      if (zfail) {
+      const std::size_t sides = weights.size();
+      if (plan.caps(l, o)) {
         clip_volume(v.light_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
         clip_volume(v.dark_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
       }
@@ -94,9 +97,20 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
       soft::DepthBounds bounds{0.0f, 0.0f};
       for (const glm::vec4& c : tris)
         bounds.zmax = std::max(bounds.zmax, c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w);
-      soft::draw_counts(target_, tris, weights,
-                        zfail ? soft::CountRule::zfail : soft::CountRule::zpass, stats.counts,
-                        bounds);
+      const std::span<const glm::vec4> all_tris(tris);
+      const std::span<const std::int32_t> all_weights(weights);
+      if (split) {
+        // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
+        soft::draw_counts(target_, all_tris.first(3 * sides), all_weights.first(sides),
+                          soft::CountRule::split, stats.counts, bounds, {*split});
+        soft::draw_counts(target_, all_tris.subspan(3 * sides), all_weights.subspan(sides),
+                          soft::CountRule::split, stats.counts, bounds,
+                          {*split, soft::SplitTiles::zfail_only});
+      } else {
+        soft::draw_counts(target_, all_tris, all_weights,
+                          plan.zfail[l][o] ? soft::CountRule::zfail : soft::CountRule::zpass,
+                          stats.counts, bounds);
+      }
     }
     target_.take_nonzero_counts(frame.shadowed[l]);
     stats.ms_counts += ms_since(start);

@@ -267,8 +267,12 @@ struct LaneCount {
 
 // What a tile test decides from the tile's depth bounds: no pixel can pass the pass's depth
 // tests, every covered pixel passes them (their stored depths need not be read), or each pixel
-// must be tested.
+// must be tested; and, for a count pass, by which rule (zpass or zfail).
 enum class TileVerdict { skip, test, accept };
+struct TileDecision {
+  TileVerdict verdict;
+  CountRule rule;
+};
 
 struct TileDepthPlane {
   float z_tile, dzdx, dzdy;
@@ -276,11 +280,11 @@ struct TileDepthPlane {
 };
 
 // Rasterizes one triangle over tile row `band`. For every row of every tile that it may cover,
-// calls row(first, covered, z, lanes, decided): pixels first .. first + lanes - 1 of the buffers,
-// the mask of those whose centres it covers (-1 or 0; no lane past the image's right edge is set),
-// its depth there, and std::true_type when the tile test accepted the tile (every covered pixel
-// passes), std::false_type when each must be tested; row returns the mask of those that passed,
-// for the counters.
+// calls row(first, covered, z, lanes, decided, rule): pixels first .. first + lanes - 1 of the
+// buffers, the mask of those whose centres it covers (-1 or 0; no lane past the image's right
+// edge is set), its depth there, std::true_type when the tile test accepted the tile (every
+// covered pixel passes) or std::false_type when each must be tested, and the tile's rule; row
+// returns the mask of those that passed, for the counters.
 //
 // Per tile, first the edge test: edge functions are linear, so the tile's corner pixel centres
 // tell whether any pixel centre of the tile can be inside, and whether all are (then no edge is
@@ -337,8 +341,7 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters,
                         plane.at(lanes - 1, rows - 1)};
     const float zlo = std::max(zlo_triangle, std::min({c[0], c[1], c[2], c[3]}));
     const float zhi = std::min(zhi_triangle, std::max({c[0], c[1], c[2], c[3]}));
-    const TileVerdict verdict =
-        tile_test(target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx], zlo, zhi);
+    const auto [verdict, rule] = tile_test(tx, band, zlo, zhi);
     if (verdict == TileVerdict::skip) {
       ++counters.tiles_skipped;
       continue;
@@ -356,7 +359,7 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters,
         const Floats z = (plane.z_tile + dzdy * j) + dz_lane;
         covered_count.add(covered);
         passed_count.add(row(static_cast<std::size_t>(y0 + j) * width + x0, covered,
-                             z < 0.0f ? 0.0f : z > 1.0f ? 1.0f : z, lanes, decided));
+                             z < 0.0f ? 0.0f : z > 1.0f ? 1.0f : z, lanes, decided, rule));
       }
     };
     using No = std::false_type;
@@ -512,9 +515,9 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
     std::uint32_t* ids = target.id.data();
     raster(
         target, p.setup, band, c,
-        [](const TileDepth&, float, float) { return TileVerdict::test; },
+        [](int, int, float, float) { return TileDecision{TileVerdict::test, CountRule::zpass}; },
         [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
-                         auto /*decided: never*/) {
+                         auto /*decided: never*/, CountRule) {
           const Floats stored = load_row<Floats>(depth + first, lanes);
           const Mask pass = covered & (z > stored);
           store_row(depth + first, pass ? z : stored, lanes);
@@ -525,37 +528,62 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
   });
 }
 
+CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::vec4& plane) {
+  const TileDepth& tile =
+      target.tile_depth[static_cast<std::size_t>(tile_y) * target.tiles_x + tile_x];
+  const float x = (float(tile_x * kTileSize) + kTileSize / 2.0f) / float(target.width) * 2.0f - 1.0f;
+  const float y = 1.0f - (float(tile_y * kTileSize) + kTileSize / 2.0f) / float(target.height) * 2.0f;
+  // Laine 2005 Eq. 8, with tile.zmin the farthest depth (reversed depth): the side of the plane
+  // the point lies on, against the camera's side, sign(plane.z).
+  const float side = plane.x * x + plane.y * y + plane.z * tile.zmin + plane.w;
+  const bool camera_side = (plane.z > 0.0f && side > 0.0f) || (plane.z < 0.0f && side < 0.0f);
+  return camera_side ? CountRule::zpass : CountRule::zfail;
+}
+
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
-                 DepthBounds bounds) {
+                 DepthBounds bounds, const SplitPlane& split) {
   assert(weights.size() * 3 == triangles.size());
   prepare(target, triangles, counters, scratch_of(target).prepared);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
   // one. It is accepted whole when every fragment passes against every stored depth, within the
-  // bounds.
-  auto tile_test = [rule, bounds](const TileDepth& tile, float zlo, float zhi) {
-    if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax) return TileVerdict::skip;
+  // bounds. Under the split rule the tile's rule comes first, and a draw limited to the other
+  // rule's tiles skips it.
+  auto tile_test = [&target, rule, bounds, &split](int tx, int band, float zlo, float zhi) {
+    const TileDepth& tile = target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx];
+    CountRule tile_rule = rule;
+    if (rule == CountRule::split) {
+      tile_rule = split_rule(target, tx, band, split.plane);
+      const bool wanted = split.tiles == SplitTiles::all ||
+                          (split.tiles == SplitTiles::zpass_only) == (tile_rule == CountRule::zpass);
+      if (!wanted) return TileDecision{TileVerdict::skip, tile_rule};
+    }
+    if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax)
+      return TileDecision{TileVerdict::skip, tile_rule};
     const bool within_bounds = bounds.zmin <= tile.zmin && tile.zmax <= bounds.zmax;
-    const bool some = rule == CountRule::zpass ? zhi > tile.zmin : zlo <= tile.zmax;
-    const bool all = rule == CountRule::zpass ? zlo > tile.zmax : zhi <= tile.zmin;
-    return !some ? TileVerdict::skip
-           : all && within_bounds ? TileVerdict::accept
-                                  : TileVerdict::test;
+    const bool zpass = tile_rule == CountRule::zpass;
+    const bool some = zpass ? zhi > tile.zmin : zlo <= tile.zmax;
+    const bool all = zpass ? zlo > tile.zmax : zhi <= tile.zmin;
+    return TileDecision{!some                  ? TileVerdict::skip
+                        : all && within_bounds ? TileVerdict::accept
+                                               : TileVerdict::test,
+                        tile_rule};
   };
+  const std::uint64_t passed_before = counters.pixels_passed;
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     // z-pass: front faces in front of the surface add; z-fail: front faces behind it subtract.
-    const std::int32_t facing = p.setup.front ? 1 : -1;
-    const std::int32_t delta = (rule == CountRule::zpass ? 1 : -1) * facing * weights[p.triangle];
-    if (delta == 0) return;
+    const std::int32_t front_delta = (p.setup.front ? 1 : -1) * weights[p.triangle];
+    if (front_delta == 0) return;
     const float* depth = target.depth.data();
     std::int32_t* count = target.count.data();
-    const bool zpass = rule == CountRule::zpass;
-    const std::uint64_t passed_before = c.pixels_passed;
     raster(target, p.setup, band, c, tile_test,
            // By value: the stores into count may alias anything an int32 reference names.
-           [depth, count, bounds, zpass, delta](std::size_t first, const Mask& covered,
-                                                const Floats& z, auto lanes, auto decided) {
+           [depth, count, bounds, front_delta](std::size_t first, const Mask& covered,
+                                               const Floats& z, auto lanes, auto decided,
+                                               CountRule tile_rule) {
+             const bool zpass = tile_rule == CountRule::zpass;
+             const std::int32_t delta = zpass ? front_delta : -front_delta;
              if constexpr (decided) {
                store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
                          lanes);
@@ -569,8 +597,8 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                        lanes);
              return pass;
            });
-    c.count_updates += c.pixels_passed - passed_before;
   });
+  counters.count_updates += counters.pixels_passed - passed_before;  // every pass writes
 }
 
 }  // namespace shadowvol::soft

@@ -101,11 +101,29 @@ struct Counters {
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters);
 
-// How a count pass uses the depth test (Everitt & Kilgard; GPU Gems 3 §11.2.1).
+// How a count pass uses the depth test (Everitt & Kilgard; GPU Gems 3 §11.2.1; Laine 2005).
 enum class CountRule {
   zpass,  // fragments in front of the stored depth: front faces add the weight, back subtract
   zfail,  // fragments at or behind it: front faces subtract the weight, back faces add
+  split,  // per tile, zpass or zfail by the side of a split plane the tile's surfaces lie on
 };
+
+// Which tiles a split-rule draw counts in (Laine 2005 §3.3): a volume's caps are needed only
+// where z-fail counts, and a near-plane pre-fill (ZP+) only where z-pass does.
+enum class SplitTiles { all, zfail_only, zpass_only };
+
+// The split test of Laine 2005 §4.3 and §5.2, made once per tile: the tile takes z-pass when
+// the point of its centre at its farthest stored depth, (x, y, depth, 1) in normalized device
+// coordinates, lies strictly on the camera's side of `plane` (a clip-space plane; the camera
+// is the clip-space point (0, 0, 1, 0)), and z-fail otherwise. Any plane gives the right
+// counts, since each tile's choice is the same for every draw of one volume; a plane through
+// the middle of the volume makes most tiles need no count at all.
+struct SplitPlane {
+  glm::vec4 plane{0.0f};
+  SplitTiles tiles = SplitTiles::all;
+};
+// The rule a split plane picks for a tile of `target` (tile_depth must be up to date).
+CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::vec4& plane);
 
 // A depth-bounds test (EXT_depth_bounds_test; McGuire et al. 2003): pixels whose stored depth
 // lies outside [zmin, zmax] are left alone. For a shadow volume, [0, its nearest depth]: a
@@ -119,9 +137,9 @@ struct DepthBounds {
 // Count pass: each triangle changes the count of the pixels it covers by its signed weight
 // (weights[t], one per triangle), by the rule above, in one write; depth is not written. Tiles
 // whose depth bounds prove that no pixel can pass the rule's test, or whose depths all lie
-// outside `bounds`, are skipped whole.
+// outside `bounds`, are skipped whole. `split` is read by CountRule::split only.
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
-                 DepthBounds bounds = {});
+                 DepthBounds bounds = {}, const SplitPlane& split = {});
 
 }  // namespace shadowvol::soft

@@ -329,5 +329,70 @@ TEST(Raster, ATriangleDrawnAgainMeetsItsOwnDepthExactly) {
   }
 }
 
+// Laine 2005 Eq. 3: z-pass and z-fail give a closed volume the same count at every surface the
+// near plane does not see inside it, so a per-tile choice between them, by any split plane, must
+// too. Closed tetrahedra in front of and through a bumpy surface; random split planes.
+TEST(Raster, ASplitPlaneChoosesPerTileWithoutChangingAnyCount) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  const int w = 93, h = 61;  // neither a multiple of the tile size
+  const glm::mat4 proj = infinite_reversed_perspective(glm::radians(60.0f), float(w) / h, 0.1f);
+  std::ptrdiff_t shadowed = 0;  // surface pixels inside a tetrahedron, over all trials
+  for (int trial = 0; trial < 12; ++trial) {
+    Target target(w, h);
+    Counters ignored;
+    // The surface: jittered triangles at eye depth 4 to 8 before a backdrop that fills the view.
+    std::vector<glm::vec4> surface = {proj * glm::vec4(-100, -100, -30, 1),
+                                      proj * glm::vec4(100, -100, -30, 1),
+                                      proj * glm::vec4(0, 100, -30, 1)};
+    for (int i = 0; i < 6; ++i)
+      for (int k = 0; k < 3; ++k)
+        surface.push_back(proj * glm::vec4(4.0f * unit(rng), 3.0f * unit(rng), -6.0f + 2.0f * unit(rng), 1));
+    draw_depth(target, surface, 0, ignored);
+    target.update_tile_depth();
+    // The volume: a tetrahedron, faces wound outwards, between eye depth 2 and 9.
+    glm::vec4 v[4];
+    for (glm::vec4& p : v) p = glm::vec4(2.5f * unit(rng), 2.0f * unit(rng), -5.5f + 3.5f * unit(rng), 1);
+    const glm::vec3 a(v[0]), b(v[1]), c(v[2]), d(v[3]);
+    if (glm::dot(glm::cross(b - a, c - a), d - a) > 0.0f) std::swap(v[1], v[2]);  // d behind abc
+    const int faces[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+    std::vector<glm::vec4> volume;
+    for (const auto& f : faces)
+      for (const int k : f) volume.push_back(proj * v[k]);
+    const std::vector<std::int32_t> weights(4, 1);
+    const auto counts = [&](CountRule rule, const SplitPlane& split, Counters& counters) {
+      draw_counts(target, volume, weights, rule, counters, {}, split);
+      std::vector<std::int32_t> out = target.count;
+      std::fill(target.count.begin(), target.count.end(), 0);
+      return out;
+    };
+    Counters zpass, zfail;
+    const std::vector<std::int32_t> expected = counts(CountRule::zfail, {}, zfail);
+    ASSERT_EQ(counts(CountRule::zpass, {}, zpass), expected) << "trial " << trial;
+    shadowed += std::count_if(expected.begin(), expected.end(), [](int c) { return c != 0; });
+    for (int plane = 0; plane < 8; ++plane) {
+      const SplitPlane split{{unit(rng), unit(rng), unit(rng), unit(rng)}};
+      Counters all, zfail_tiles, zpass_tiles;
+      EXPECT_EQ(counts(CountRule::split, split, all), expected) << trial << "/" << plane;
+      // The two halves of the tiles add up to the whole, tile for tile.
+      std::vector<std::int32_t> halves = counts(CountRule::split, {split.plane, SplitTiles::zfail_only}, zfail_tiles);
+      const std::vector<std::int32_t> other = counts(CountRule::split, {split.plane, SplitTiles::zpass_only}, zpass_tiles);
+      for (std::size_t p = 0; p < halves.size(); ++p) halves[p] += other[p];
+      EXPECT_EQ(halves, expected) << trial << "/" << plane;
+      EXPECT_EQ(zfail_tiles.pixels_processed + zpass_tiles.pixels_processed, all.pixels_processed);
+    }
+    // A plane that every surface lies in front of picks z-pass everywhere, one with every
+    // surface behind it z-fail: the same work as those rules.
+    Counters front, behind;
+    counts(CountRule::split, {{0.0f, 0.0f, 1.0f, -1e-6f}}, front);
+    counts(CountRule::split, {{0.0f, 0.0f, -1.0f, 2.0f}}, behind);
+    EXPECT_EQ(front.pixels_processed, zpass.pixels_processed);
+    EXPECT_EQ(front.count_updates, zpass.count_updates);
+    EXPECT_EQ(behind.pixels_processed, zfail.pixels_processed);
+    EXPECT_EQ(behind.count_updates, zfail.count_updates);
+  }
+  EXPECT_GT(shadowed, w * h / 10);
+}
+
 }  // namespace
 }  // namespace shadowvol::soft

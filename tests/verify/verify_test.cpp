@@ -90,6 +90,19 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+// Split-plane shadow volumes (Laine 2005) run in the software backend only.
+INSTANTIATE_TEST_SUITE_P(
+    SplitPlane, BuiltinScenes,
+    ::testing::Combine(::testing::Values("demo", "camera-in-shadow", "light-in-view", "directional",
+                                         "nonmanifold"),
+                       ::testing::Values(Method::split_plane), ::testing::Values(kSoft)),
+    [](const auto& info) {
+      std::string name = std::get<0>(info.param) + "_spsv";
+      for (char& ch : name)
+        if (ch == '-') ch = '_';
+      return name;
+    });
+
 TEST(BuiltinScenes, EveryGeneratorMatchesOnTheNonManifoldScene) {
   auto scene = builtin_scene("nonmanifold");
   ASSERT_TRUE(scene.ok());
