@@ -227,8 +227,8 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_
                   "A built-in scene (" + scene_list + "), a scene file (.json) or a mesh file")
       ->capture_default_str();
   cmd->add_option("--method", args.method,
-                  "zpass, zfail, auto (per object) or spsv (per tile, by a split plane; soft "
-                  "backend)")
+                  "zpass, zfail, auto (per object); soft backend only: spsv (per tile, by a split "
+                  "plane) or zp+db (z-pass with the ZP+ near-plane pre-fill)")
       ->capture_default_str();
   cmd->add_option("--generator", args.generator, "standard, robust, multiplicity or auto")
       ->capture_default_str();
@@ -273,13 +273,14 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   auto backend = parse_backend(args.backend);
   if (!backend) return make_error("--backend: " + backend.error().message);
-  if (*method == Method::split_plane) {  // the split test is per tile of the soft rasterizer
+  if (soft_only(*method)) {
+    const std::string what = "--method " + std::string(to_string(*method));
     if (*backend == Backend::gl)
-      return make_error("--method spsv runs in the soft backend only (its split test is made per "
-                        "tile of the software rasterizer); use --backend soft");
+      return make_error(what + " runs in the soft backend only (the split test and the ZP+ "
+                               "pre-fill are built in the software rasterizer); use --backend soft");
     if (*backend == Backend::automatic)
-      std::cerr << "shadowvol: backend auto: soft, since --method spsv runs in the soft backend "
-                   "only\n";
+      std::cerr << "shadowvol: backend auto: soft, since " << what
+                << " runs in the soft backend only\n";
     *backend = Backend::soft;
   }
   auto volumes = gl::parse_volume_path(args.volumes);
@@ -404,8 +405,9 @@ int verify(const VerifyArgs& args) {
 }
 
 int view(const FrameArgs& frame, int frames, const std::string& screenshot) {
-  if (frame.method == to_string(Method::split_plane))
-    return fail("--method spsv runs in the soft backend only; the viewer draws with OpenGL");
+  if (auto method = parse_method(frame.method); method && soft_only(*method))
+    return fail("--method " + frame.method +
+                " runs in the soft backend only; the viewer draws with OpenGL");
   auto resolved = resolve(frame);
   if (!resolved) return fail(resolved.error().message);
   if (frames < 0) return fail("--frames: " + std::to_string(frames) + " is not a count");

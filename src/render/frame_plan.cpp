@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "render/near_plane_prefill.h"
+
 namespace shadowvol {
 namespace {
 
@@ -117,8 +119,9 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     float radius;
   };
   std::vector<Sphere> bounds(objects);
-  const bool per_object =
-      options.method == Method::automatic || options.method == Method::split_plane;
+  const bool per_object = options.method == Method::automatic ||
+                          options.method == Method::split_plane ||
+                          options.method == Method::zpass_prefill;
   if (per_object)
     for (std::size_t o = 0; o < objects; ++o) {
       glm::vec3 lo(INFINITY), hi(-INFINITY);
@@ -131,15 +134,22 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     }
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
   plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
+  plan.prefill.assign(scene.lights.size(), std::vector<bool>(objects));
   stats.zfail_lights.assign(objects, 0);
   const glm::mat4 plane_to_clip = glm::transpose(plan.inv_view_proj);  // planes map by M^-T
+  const bool prefills =
+      options.method == Method::split_plane || options.method == Method::zpass_prefill;
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
     for (std::size_t o = 0; o < objects; ++o) {
-      const bool zfail =
+      const bool near =
           per_object
               ? may_shadow_near_plane(bounds[o].centre, bounds[o].radius, near_rect, plan.lights[l])
               : options.method == Method::zfail;
+      const bool prefill = prefills && near;
+      const bool zfail =
+          prefill ? !near_plane_prefill_possible(plan.lights[l], plan.view_proj) : near;
       plan.zfail[l][o] = zfail;
+      plan.prefill[l][o] = prefill && !zfail;
       if (options.method == Method::split_plane && !zfail)
         plan.split[l][o] = plane_to_clip * point_camera_light(bounds[o].centre, plan.lights[l]);
       (zfail ? stats.objects_zfail : plan.split[l][o] ? stats.objects_split : stats.objects_zpass) += 1;
@@ -162,7 +172,7 @@ std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
     const glm::vec4 object_light = object_space_light(object, scene.lights[light].position);
-    const VolumeOptions options{generator, plan.caps(light, o)};
+    const VolumeOptions options{generator, plan.builds_caps(light, o)};
     Entry& c = cache[o];
     if (c.topology == object.topology && c.light == object_light &&
         c.options.generator == options.generator && c.options.caps == options.caps) {

@@ -38,10 +38,17 @@ struct FramePlan {
   // [light][object]: under Method::split_plane, the volume's split plane in clip space (Laine
   // 2005 §4.1, Point-Camera-Light); none where the volume is drawn by one rule whole.
   std::vector<std::vector<std::optional<glm::vec4>>> split;
+  // [light][object]: z-pass counts of this volume start from the near-plane pre-fill (ZP+):
+  // under Method::zpass_prefill, and in a split plane's z-pass tiles, where the volume may
+  // reach the near plane.
+  std::vector<std::vector<bool>> prefill;
 
-  // Whether the volume of object o for light l needs its caps: z-fail counts them, and so do a
-  // split plane's z-fail tiles.
-  bool caps(std::size_t l, std::size_t o) const { return zfail[l][o] || split[l][o].has_value(); }
+  // Whether the volume of object o for light l counts its caps: z-fail does, and so do a split
+  // plane's z-fail tiles. The volume is built with caps also where the pre-fill projects them.
+  bool counts_caps(std::size_t l, std::size_t o) const {
+    return zfail[l][o] || split[l][o].has_value();
+  }
+  bool builds_caps(std::size_t l, std::size_t o) const { return counts_caps(l, o) || prefill[l][o]; }
 
   // (object, face) of a depth-pass id, or object -1 when the id is past the last face.
   std::pair<std::int32_t, std::uint32_t> object_of(std::uint32_t id) const;
@@ -49,8 +56,9 @@ struct FramePlan {
 
 // Decides everything above for this scene and these options. `auto` takes z-fail for an object
 // only where its bounding sphere may put part of the near-plane rectangle in its shadow
-// (GPU Gems 3 §11.2.3); `spsv` takes a split plane there instead of z-pass. Counts the objects
-// of each method into stats.
+// (GPU Gems 3 §11.2.3). `spsv` gives every object a split plane, and `zp+db` draws by z-pass;
+// both pre-fill where `auto` would take z-fail, and take z-fail where the light lies in the near
+// plane, which no pre-fill can see. Counts the objects of each method into stats.
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
 
 // The light in the object's own space (the inverse of its transform, in double), where its

@@ -16,12 +16,16 @@ std::string_view to_string(Method method) {
       return "auto";
     case Method::split_plane:
       return "spsv";
+    case Method::zpass_prefill:
+      return "zp+db";
   }
   return "unknown";
 }
 
 Expected<Method> parse_method(std::string_view name) {
-  return parse_name(name, {Method::zpass, Method::zfail, Method::automatic, Method::split_plane},
+  return parse_name(name,
+                    {Method::zpass, Method::zfail, Method::automatic, Method::split_plane,
+                     Method::zpass_prefill},
                     "method");
 }
 

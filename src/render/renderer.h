@@ -28,9 +28,17 @@ enum class Method : std::uint8_t {
   // software backend only). Where a volume may reach the near plane it takes z-fail whole, until
   // the near-plane pre-fill (ZP+) that z-pass tiles would need there is built.
   split_plane,
+  // Z-pass made exact by the near-plane pre-fill of ZP+ (Hornus et al. 2005) where a volume
+  // may reach the near plane; with depth bounds, Laine 2005's first baseline (software only).
+  zpass_prefill,
 };
 std::string_view to_string(Method method);
 Expected<Method> parse_method(std::string_view name);
+// Whether only the software backend draws `method` (it tests tiles against split planes, or
+// pre-fills from the near plane).
+inline bool soft_only(Method method) {
+  return method == Method::split_plane || method == Method::zpass_prefill;
+}
 
 struct RenderOptions {
   int width = 960;

@@ -12,6 +12,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "render/near_plane_prefill.h"
+
 namespace shadowvol {
 namespace {
 
@@ -78,7 +80,8 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
     stats.ms_volumes += ms_since(start);
 
     start = Clock::now();
-    std::vector<std::int32_t> weights;
+    std::vector<std::int32_t> weights, prefill_weights;
+    std::vector<glm::vec4> prefill_tris;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       const VolumeBuffer& v = volumes_.volume(l, o);
       const std::optional<glm::vec4>& split = plan.split[l][o];
@@ -88,7 +91,7 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
       weights.clear();
       clip_volume(v.sides, kQuadCorners, mvp, plan.weight_sign[o], tris, weights);
       const std::size_t sides = weights.size();
-      if (plan.caps(l, o)) {
+      if (plan.counts_caps(l, o)) {
         clip_volume(v.light_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
         clip_volume(v.dark_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
       }
@@ -99,6 +102,18 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
         bounds.zmax = std::max(bounds.zmax, c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w);
       const std::span<const glm::vec4> all_tris(tris);
       const std::span<const std::int32_t> all_weights(weights);
+      if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
+        prefill_tris.clear();
+        prefill_weights.clear();
+        [[maybe_unused]] const bool made = append_near_plane_prefill(
+            v.light_caps, plan.model[o], plan.weight_sign[o], plan.lights[l], plan.view_proj,
+            prefill_tris, prefill_weights);
+        assert(made);  // the plan takes z-fail where it cannot be made
+        soft::draw_counts(target_, prefill_tris, prefill_weights, soft::CountRule::prefill,
+                          stats.counts, {}, {split.value_or(glm::vec4(0.0f)),
+                                             split ? soft::SplitTiles::zpass_only
+                                                   : soft::SplitTiles::all});
+      }
       if (split) {
         // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
         soft::draw_counts(target_, all_tris.first(3 * sides), all_weights.first(sides),

@@ -15,6 +15,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "soft/clip_polygon.h"
+
 #ifdef __AVX__
 #include <immintrin.h>
 #endif
@@ -58,9 +60,7 @@ inline float plane_distance(int plane, const glm::vec4& v) {
   }
 }
 
-// Sutherland-Hodgman against every plane. Each new vertex is computed from the edge's inside
-// vertex towards its outside one, whichever order the polygon runs it in: two triangles that
-// share an edge then compute the same point, bit for bit, and stay watertight along the cut.
+// Clipped against every plane in turn (clip_polygon.h: watertight along every cut).
 constexpr int kMaxPolygon = 3 + kPlanes;
 struct Polygon {
   std::array<glm::vec4, kMaxPolygon> v;
@@ -68,33 +68,13 @@ struct Polygon {
 };
 
 bool clip(const glm::vec4* tri, Polygon& out, bool& clipped) {
-  Polygon a, b;
-  a.v[0] = tri[0], a.v[1] = tri[1], a.v[2] = tri[2], a.n = 3;
+  out.v[0] = tri[0], out.v[1] = tri[1], out.v[2] = tri[2], out.n = 3;
   clipped = false;
   for (int plane = 0; plane < kPlanes; ++plane) {
-    float d[kMaxPolygon];
-    bool any_out = false;
-    for (int i = 0; i < a.n; ++i) {
-      d[i] = plane_distance(plane, a.v[i]);
-      any_out |= !(d[i] >= 0.0f);  // NaN counts as outside
-    }
-    if (!any_out) continue;
-    clipped = true;
-    b.n = 0;
-    for (int i = 0; i < a.n; ++i) {
-      const int j = (i + 1) % a.n;
-      const bool in_i = d[i] >= 0.0f, in_j = d[j] >= 0.0f;
-      if (in_i) b.v[b.n++] = a.v[i];
-      if (in_i != in_j) {
-        const int in = in_i ? i : j, out = in_i ? j : i;
-        const float t = d[in] / (d[in] - d[out]);
-        b.v[b.n++] = a.v[in] + (a.v[out] - a.v[in]) * t;
-      }
-    }
-    std::swap(a, b);
-    if (a.n < 3) return false;
+    clipped |= clip_polygon(out.v, out.n,
+                            [plane](const glm::vec4& v) { return plane_distance(plane, v); });
+    if (out.n < 3) return false;
   }
-  out = a;
   return true;
 }
 
@@ -548,17 +528,19 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
   // one. It is accepted whole when every fragment passes against every stored depth, within the
-  // bounds. Under the split rule the tile's rule comes first, and a draw limited to the other
-  // rule's tiles skips it.
+  // bounds. The split plane's pick comes first: a draw limited to the other rule's tiles skips
+  // the tile, and the split rule takes the pick as the tile's rule. A pre-fill takes every tile.
   auto tile_test = [&target, rule, bounds, &split](int tx, int band, float zlo, float zhi) {
     const TileDepth& tile = target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx];
     CountRule tile_rule = rule;
-    if (rule == CountRule::split) {
-      tile_rule = split_rule(target, tx, band, split.plane);
-      const bool wanted = split.tiles == SplitTiles::all ||
-                          (split.tiles == SplitTiles::zpass_only) == (tile_rule == CountRule::zpass);
-      if (!wanted) return TileDecision{TileVerdict::skip, tile_rule};
+    if (rule == CountRule::split || split.tiles != SplitTiles::all) {
+      const CountRule picked = split_rule(target, tx, band, split.plane);
+      if (split.tiles != SplitTiles::all &&
+          (split.tiles == SplitTiles::zpass_only) != (picked == CountRule::zpass))
+        return TileDecision{TileVerdict::skip, picked};
+      if (rule == CountRule::split) tile_rule = picked;
     }
+    if (tile_rule == CountRule::prefill) return TileDecision{TileVerdict::accept, tile_rule};
     if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax)
       return TileDecision{TileVerdict::skip, tile_rule};
     const bool within_bounds = bounds.zmin <= tile.zmin && tile.zmax <= bounds.zmax;
@@ -572,7 +554,8 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   };
   const std::uint64_t passed_before = counters.pixels_passed;
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
-    // z-pass: front faces in front of the surface add; z-fail: front faces behind it subtract.
+    // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
+    // it subtract.
     const std::int32_t front_delta = (p.setup.front ? 1 : -1) * weights[p.triangle];
     if (front_delta == 0) return;
     const float* depth = target.depth.data();
@@ -582,7 +565,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
            [depth, count, bounds, front_delta](std::size_t first, const Mask& covered,
                                                const Floats& z, auto lanes, auto decided,
                                                CountRule tile_rule) {
-             const bool zpass = tile_rule == CountRule::zpass;
+             const bool zpass = tile_rule != CountRule::zfail;  // prefill counts as z-pass does
              const std::int32_t delta = zpass ? front_delta : -front_delta;
              if constexpr (decided) {
                store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),

@@ -106,10 +106,14 @@ enum class CountRule {
   zpass,  // fragments in front of the stored depth: front faces add the weight, back subtract
   zfail,  // fragments at or behind it: front faces subtract the weight, back faces add
   split,  // per tile, zpass or zfail by the side of a split plane the tile's surfaces lie on
+  // Every covered pixel, whatever its depth: front faces add the weight, back faces subtract it
+  // (the near-plane pre-fill of ZP+, render/near_plane_prefill.h). Depth bounds do not apply.
+  prefill,
 };
 
-// Which tiles a split-rule draw counts in (Laine 2005 §3.3): a volume's caps are needed only
-// where z-fail counts, and a near-plane pre-fill (ZP+) only where z-pass does.
+// Which tiles a draw counts in, by the rule a split plane picks for them (Laine 2005 §3.3): a
+// volume's caps are needed only where z-fail counts, and a near-plane pre-fill (ZP+) only where
+// z-pass does.
 enum class SplitTiles { all, zfail_only, zpass_only };
 
 // The split test of Laine 2005 §4.3 and §5.2, made once per tile: the tile takes z-pass when
@@ -137,7 +141,8 @@ struct DepthBounds {
 // Count pass: each triangle changes the count of the pixels it covers by its signed weight
 // (weights[t], one per triangle), by the rule above, in one write; depth is not written. Tiles
 // whose depth bounds prove that no pixel can pass the rule's test, or whose depths all lie
-// outside `bounds`, are skipped whole. `split` is read by CountRule::split only.
+// outside `bounds`, are skipped whole. `split.plane` picks each tile's rule under
+// CountRule::split, and limits any rule's draw to some tiles when split.tiles is not `all`.
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
                  DepthBounds bounds = {}, const SplitPlane& split = {});

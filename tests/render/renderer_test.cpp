@@ -60,7 +60,7 @@ TEST(Renderer, OptionsOutsideTheRasterizersLimitsAreRefused) {
   EXPECT_FALSE(check_options({640, 5000}).ok());
   auto method = parse_method("zfast");
   ASSERT_FALSE(method.ok());
-  EXPECT_EQ(method.error().message, "unknown method 'zfast': expected zpass, zfail, auto or spsv");
+  EXPECT_EQ(method.error().message, "unknown method 'zfast': expected zpass, zfail, auto, spsv or zp+db");
 }
 
 }  // namespace

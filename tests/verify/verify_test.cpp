@@ -90,18 +90,64 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
-// Split-plane shadow volumes (Laine 2005) run in the software backend only.
+// Split-plane shadow volumes (Laine 2005) and z-pass with the ZP+ pre-fill run in the software
+// backend only.
 INSTANTIATE_TEST_SUITE_P(
-    SplitPlane, BuiltinScenes,
+    SoftOnly, BuiltinScenes,
     ::testing::Combine(::testing::Values("demo", "camera-in-shadow", "light-in-view", "directional",
                                          "nonmanifold"),
-                       ::testing::Values(Method::split_plane), ::testing::Values(kSoft)),
+                       ::testing::Values(Method::split_plane, Method::zpass_prefill),
+                       ::testing::Values(kSoft)),
     [](const auto& info) {
-      std::string name = std::get<0>(info.param) + "_spsv";
+      std::string name = std::get<0>(info.param) + "_" +
+                         (std::get<1>(info.param) == Method::split_plane ? "spsv" : "zp_db");
       for (char& ch : name)
         if (ch == '-') ch = '_';
       return name;
     });
+
+// ZP+ (Hornus et al. 2005): with the near plane in a shadow volume, plain z-pass must fail and
+// z-pass from the near-plane pre-fill, alone (zp+db) or in a split plane's z-pass tiles (spsv),
+// must match the reference. Each way the pre-fill's projection can turn: point and directional
+// lights on the eye's side of the near plane (the built-in scene's light is up and behind the
+// camera), a mirrored caster, a caster hidden behind the camera, and a light ahead of the eye,
+// beyond the near plane, with its caster in view.
+TEST(NearPlanePrefill, MakesZPassExactWithTheEyeInShadow) {
+  const Scene base = *builtin_scene("camera-in-shadow");
+  struct Case {
+    const char* name;
+    Scene scene;
+  };
+  std::vector<Case> cases = {{"point light", base},
+                             {"directional", base},
+                             {"mirrored", base},
+                             {"caster behind the eye", base},
+                             {"light ahead of the eye", base}};
+  cases[1].scene.lights[0].position = {0.07f, 1.0f, 0.43f, 0.0f};
+  std::size_t slab = 1;
+  ASSERT_EQ(base.objects[slab].name, "slab");
+  cases[2].scene.objects[slab].transform =
+      base.objects[slab].transform * glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+  Scene& behind = cases[3].scene;
+  behind.objects[slab] =
+      make_object("slab", make_box({-1.5f, -1.5f, -0.2f}, {1.5f, 1.5f, 0.2f}),
+                  glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 2.2f, 6.0f)), {0.5f, 0.5f, 0.5f});
+  behind.lights[0].position = {0.0f, 2.5f, 9.0f, 1.0f};
+  Scene& ahead = cases[4].scene;  // the eye at (0, 2, 3.5) looks down -z
+  ahead.objects[slab] =
+      make_object("slab", make_box({-1.5f, -0.1f, -1.5f}, {1.5f, 0.1f, 1.5f}),
+                  glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 4.0f, -1.25f)), {0.5f, 0.5f, 0.5f});
+  ahead.lights[0].position = {0.0f, 6.0f, -6.0f, 1.0f};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    EXPECT_GT(verify(c.scene, Method::zpass).mismatched_outside_band, 100u);
+    for (Method m : {Method::zpass_prefill, Method::split_plane}) {
+      const Comparison result = verify(c.scene, m);
+      EXPECT_GT(result.pixels_compared, std::size_t{kWidth * kHeight / 4});
+      EXPECT_EQ(result.mismatched_outside_band, 0u) << to_string(m);
+    }
+  }
+}
 
 TEST(BuiltinScenes, EveryGeneratorMatchesOnTheNonManifoldScene) {
   auto scene = builtin_scene("nonmanifold");

@@ -1,0 +1,39 @@
+// shadowvol render: the near-plane pre-fill of ZP+ (Hornus, Hoberock, Lefebvre and Hart 2005),
+// which makes z-pass exact when the camera's near plane lies in a shadow volume.
+//
+// Z-pass counts the volume faces between the near plane and the surface, so it is right only
+// where the near-plane point of the pixel lies outside every volume. ZP+ first gives each pixel
+// the count of the volume at that point: the caster's light caps, projected from the light onto
+// the near plane, cover exactly the near-plane points whose segment to the light crosses them.
+// Drawn with soft::CountRule::prefill (no depth test: front faces add their weight, back faces
+// subtract it), they leave that count in every pixel, and the z-pass draw of the sides adds
+// the rest. Laine 2005 §3.3 applies it in the pixels that use z-pass only.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/volume.h"
+
+namespace shadowvol {
+
+// Appends the pre-fill of one volume: its light caps (object space, with `model` to eye-relative
+// space and `mirror` = -1 where that transform mirrors), seen from `light` (eye-relative) on the
+// near plane of `view_proj` (core/projection.h). The triangles are in clip space with their
+// depth set to 1/2 (they carry counts, not depth); the weights are signed so that a front face
+// adds what the volume gains along the segment from the light. Each cap is first cut to the
+// part that can cross such a segment: on the light's side of the near plane and, for a point
+// light, no farther from it than the light. Returns false, appending nothing, when the light
+// lies in the near plane itself, where the projection degenerates: draw that volume by z-fail.
+// Whether the pre-fill can be made for this light: not when it lies in the near plane.
+bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_proj);
+
+bool append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
+                               const glm::vec4& light, const glm::mat4& view_proj,
+                               std::vector<glm::vec4>& triangles,
+                               std::vector<std::int32_t>& weights);
+
+}  // namespace shadowvol
