@@ -22,6 +22,7 @@
 #include "image_file.h"
 #include "view.h"
 #include "gl/context.h"
+#include "render/heatmap.h"
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
@@ -306,6 +307,7 @@ struct RenderArgs {
   bool stats = false;
   bool show_volumes = false;
   int frames = 1;
+  std::string heatmap;  // PNG of the count passes' work per tile; soft backend
 };
 
 int render(const RenderArgs& args) {
@@ -314,6 +316,14 @@ int render(const RenderArgs& args) {
   const Scene& scene = resolved->scene;
   RenderOptions options = resolved->options;
   options.show_volumes = args.show_volumes;
+  options.tile_work = !args.heatmap.empty();
+  if (options.tile_work && resolved->backend != Backend::soft) {
+    if (resolved->backend == Backend::gl)
+      return fail("--heatmap maps the software rasterizer's tiles; use --backend soft");
+    std::cerr << "shadowvol: backend auto: soft, since --heatmap maps the software rasterizer's "
+                 "tiles\n";
+    resolved->backend = Backend::soft;
+  }
   if (args.frames < 1)
     return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
 
@@ -331,6 +341,13 @@ int render(const RenderArgs& args) {
   if (auto ok = write_png(args.out, img); !ok) return fail(ok.error().message);
   std::cout << "wrote " << args.out << " (" << scene.name << ", " << img.width << "x" << img.height
             << ", " << to_string(options.method) << ", " << (*renderer)->backend() << ")\n";
+  if (options.tile_work) {
+    const Heatmap map = tile_work_heatmap(frame);
+    if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
+    std::printf("wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
+                "per pixel)\n",
+                args.heatmap.c_str(), map.passes_at_top);
+  }
   if (args.stats) {
     const FrameStats& s = frame.stats;
     std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms, read-back %.1f ms\n",
@@ -553,6 +570,9 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--stats", render_args.stats, "Print the frame's timings and counters");
   render_cmd->add_flag("--show-volumes", render_args.show_volumes,
                        "Draw the shadow volumes' edges over the image (one colour per light)");
+  render_cmd->add_option("--heatmap", render_args.heatmap,
+                         "Also write a PNG of the count passes' work per 8x8 tile: pixels "
+                         "processed and pixels updated, over the scene (soft backend)");
   render_cmd
       ->add_option("--frames", render_args.frames,
                    "Render frames 0 .. N-1 of the scene's animation; write the last")

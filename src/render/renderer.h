@@ -48,6 +48,9 @@ struct RenderOptions {
   // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
   // one colour per light, so that a person can see the volumes.
   bool show_volumes = false;
+  // Software backend: record the count passes' work per 8x8 tile into Frame::tile_work (for
+  // `render --heatmap`); the gl backend records none.
+  bool tile_work = false;
 };
 
 struct Image {
@@ -75,6 +78,9 @@ struct Frame {
   std::vector<std::uint32_t> face;   // per pixel: face of that object
   std::vector<std::vector<std::uint8_t>> shadowed;  // per light, per pixel: count != 0
   FrameStats stats;
+  // RenderOptions::tile_work, software backend: per 8x8 tile (soft::kTileSize), row-major, the
+  // count passes' work over all lights; else empty.
+  std::vector<soft::TileWork> tile_work;
 };
 
 // Checks an options struct a person filled in: size within the rasterizer's limits.

@@ -57,6 +57,7 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
   // --- depth pass: ids are (first face id of the object) + face ---
   auto start = Clock::now();
   target_.clear_depth();
+  target_.tile_work.assign(options.tile_work ? target_.tile_depth.size() : 0, soft::TileWork{});
   std::vector<glm::vec4> tris;
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
@@ -133,6 +134,7 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
 
   // --- shading: ambient everywhere, each light where it is not shadowed ---
   start = Clock::now();
+  frame.tile_work = target_.tile_work;
   frame.image = {w, h, std::vector<std::uint8_t>(pixels * 4)};
   std::vector<std::vector<glm::vec3>> world(scene.objects.size());  // vertices, once per frame
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {

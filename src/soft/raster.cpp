@@ -273,8 +273,9 @@ struct TileDepthPlane {
 // functions: within a tile that an edge cuts, E = E0 + 256 k,
 // with k = dx j - dy i below 2^28, so E >= 0 exactly when floor(E0 / 256) + k >= 0, and
 // floor(E0 / 256) is itself below 2^28 there.
+// `work`: the band's TileWork entries, or null to record none.
 template <class TileTest, class Row>
-void raster(const Target& target, const Setup& s, int band, Counters& counters,
+void raster(const Target& target, const Setup& s, int band, Counters& counters, TileWork* work,
             TileTest&& tile_test, Row&& row) {
   const int y0 = band * kTileSize, y1 = std::min(target.height, y0 + kTileSize) - 1;
   int px0 = 0, px1 = 0;
@@ -344,12 +345,19 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters,
     };
     using No = std::false_type;
     using Yes = std::true_type;
+    const Mask covered_before = covered_count.sum, passed_before = passed_count.sum;
     if (lanes < kTileSize)
       rows_of_tile(lanes, No{}, No{});
     else if (verdict == TileVerdict::accept)
       interior ? rows_of_tile(WholeRow{}, Yes{}, Yes{}) : rows_of_tile(WholeRow{}, Yes{}, No{});
     else
       interior ? rows_of_tile(WholeRow{}, No{}, Yes{}) : rows_of_tile(WholeRow{}, No{}, No{});
+    if (work != nullptr) {
+      work[tx].pixels_processed += static_cast<std::uint32_t>(
+          LaneCount{covered_count.sum - covered_before}.total());
+      work[tx].pixels_updated +=
+          static_cast<std::uint32_t>(LaneCount{passed_count.sum - passed_before}.total());
+    }
   }
   counters.pixels_processed += covered_count.total();
   counters.pixels_passed += passed_count.total();
@@ -494,7 +502,7 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
     float* depth = target.depth.data();
     std::uint32_t* ids = target.id.data();
     raster(
-        target, p.setup, band, c,
+        target, p.setup, band, c, nullptr,
         [](int, int, float, float) { return TileDecision{TileVerdict::test, CountRule::zpass}; },
         [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
                          auto /*decided: never*/, CountRule) {
@@ -524,6 +532,8 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
                  DepthBounds bounds, const SplitPlane& split) {
   assert(weights.size() * 3 == triangles.size());
+  assert(target.tile_work.empty() ||
+         target.tile_work.size() == static_cast<std::size_t>(target.tiles_x) * target.tiles_y);
   prepare(target, triangles, counters, scratch_of(target).prepared);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
@@ -560,7 +570,10 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     if (front_delta == 0) return;
     const float* depth = target.depth.data();
     std::int32_t* count = target.count.data();
-    raster(target, p.setup, band, c, tile_test,
+    TileWork* work = target.tile_work.empty()
+                         ? nullptr
+                         : &target.tile_work[static_cast<std::size_t>(band) * target.tiles_x];
+    raster(target, p.setup, band, c, work, tile_test,
            // By value: the stores into count may alias anything an int32 reference names.
            [depth, count, bounds, front_delta](std::size_t first, const Mask& covered,
                                                const Floats& z, auto lanes, auto decided,

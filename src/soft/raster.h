@@ -51,6 +51,13 @@ struct TileDepth {
   float zmax = 0.0f;
 };
 
+// The count passes' work in one tile (Laine 2005 Fig. 1): its pixels that a volume primitive
+// covered and that reached the depth test, and those whose count changed.
+struct TileWork {
+  std::uint32_t pixels_processed = 0;
+  std::uint32_t pixels_updated = 0;
+};
+
 // The buffers of one frame. Row-major, row 0 at the top.
 struct Target {
   static constexpr std::uint32_t kNoId = 0xffffffffu;
@@ -60,6 +67,9 @@ struct Target {
   std::vector<std::int32_t> count;    // signed shadow-volume count
   std::vector<std::uint32_t> id;      // what the depth pass left visible: kNoId or an id
   std::vector<TileDepth> tile_depth;  // hi-z, valid after update_tile_depth()
+  // Per tile, row-major: what draw_counts did there, added up while the vector holds one entry
+  // per tile (the caller sizes and clears it); empty, nothing is recorded.
+  std::vector<TileWork> tile_work;
 
   Target();
   Target(int w, int h);
