@@ -197,6 +197,64 @@ Scene nonmanifold() {
   return s;
 }
 
+// Laine 2005's test scenes, in their spirit (Table 1): a light circling overhead, frame by
+// frame, and the casters turning, so that `bench --frames N` sees an animation.
+constexpr SceneLight kCirclingLight = {{3.5f, 6.0f, 2.5f, 1.0f}, {1.0f, 0.97f, 0.9f}, 1.0f, 4.0f};
+
+Scene knight() {
+  Scene s;
+  s.name = "knight";
+  add_ground(s, 5.0f);
+  s.objects.push_back(make_object("knight", make_knight(), place({0.0f, 0.0f, 0.0f}, 20.0f),
+                                  {0.7f, 0.72f, 0.78f}));
+  s.objects.back().animation = {{0.0f, 1.0f, 0.0f}, 2.0f, glm::vec3(0.0f)};
+  s.lights.push_back(kCirclingLight);
+  s.camera = {{0.5f, 2.2f, 4.2f}, {0.0f, 1.0f, 0.0f}};
+  return s;
+}
+
+Scene knights16() {
+  Scene s;
+  s.name = "knights16";
+  add_ground(s, 9.0f);
+  const auto shared = std::make_shared<const Mesh>(make_knight());
+  const auto topology = std::make_shared<const Topology>(build_topology(*shared));
+  for (int i = 0; i < 16; ++i) {
+    const float x = 1.6f * static_cast<float>(i % 4) - 2.4f, z = 1.6f * static_cast<float>(i / 4) - 2.4f;
+    SceneObject knight{"knight" + std::to_string(i), shared, topology,
+                       place({x, 0.0f, z}, 37.0f * static_cast<float>(i)), {{0.7f, 0.72f, 0.78f}},
+                       {}};
+    knight.animation = {{0.0f, 1.0f, 0.0f}, i % 2 ? 2.0f : -2.0f, glm::vec3(0.0f)};
+    s.objects.push_back(std::move(knight));
+  }
+  s.lights.push_back(kCirclingLight);
+  s.camera = {{1.0f, 5.5f, 8.5f}, {0.0f, 0.6f, 0.0f}};
+  return s;
+}
+
+// `decomposed`: each connected part of the tree (a branch with its leaves) an object of its own,
+// so that each gets its own split plane (Laine 2005 §6).
+Scene tree(bool decomposed) {
+  Scene s;
+  s.name = decomposed ? "tree-decomposed" : "tree";
+  add_ground(s, 7.0f);
+  const glm::vec3 bark(0.55f, 0.42f, 0.3f);
+  const glm::mat4 at = place({0.0f, 0.0f, 0.0f}, 0.0f, glm::vec3(1.3f));
+  if (!decomposed) {
+    s.objects.push_back(make_object("tree", make_tree(), at, bark));
+  } else {
+    int n = 0;
+    for (Mesh& part : connected_parts(make_tree()))
+      s.objects.push_back(make_object("branch" + std::to_string(n++), std::move(part), at, bark));
+  }
+  s.lights.push_back(kCirclingLight);
+  s.camera = {{0.0f, 3.4f, 10.0f}, {0.0f, 2.5f, 0.0f}};
+  return s;
+}
+
+Scene tree_whole() { return tree(false); }
+Scene tree_decomposed() { return tree(true); }
+
 struct Builtin {
   std::string_view name;
   Scene (*make)();
@@ -205,7 +263,11 @@ constexpr Builtin kBuiltins[] = {{"demo", demo},
                                  {"camera-in-shadow", camera_in_shadow},
                                  {"light-in-view", light_in_view},
                                  {"directional", directional},
-                                 {"nonmanifold", nonmanifold}};
+                                 {"nonmanifold", nonmanifold},
+                                 {"knight", knight},
+                                 {"knights16", knights16},
+                                 {"tree", tree_whole},
+                                 {"tree-decomposed", tree_decomposed}};
 
 }  // namespace
 

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <utility>
+
+#include <glm/geometric.hpp>
 
 namespace shadowvol {
 
@@ -59,6 +63,157 @@ Mesh make_ground(float half_size) {
   m.positions = {{-h, 0, -h}, {-h, 0, h}, {h, 0, h}, {h, 0, -h}};
   m.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from +y
   return m;
+}
+
+Mesh make_tube(glm::vec3 a, glm::vec3 b, float ra, float rb, int sides) {
+  const glm::vec3 w = glm::normalize(b - a);
+  const glm::vec3 helper = std::abs(w.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 u = glm::normalize(glm::cross(helper, w)), v = glm::cross(w, u);  // u x v = w
+  Mesh m;
+  m.positions = {a, b};
+  for (const auto& [centre, radius] : {std::pair{a, ra}, std::pair{b, rb}})
+    for (int i = 0; i < sides; ++i) {
+      const float t = 2.0f * std::numbers::pi_v<float> * static_cast<float>(i) / sides;
+      m.positions.push_back(centre + radius * (std::cos(t) * u + std::sin(t) * v));
+    }
+  const auto ring = [&](int end, int i) { return static_cast<std::uint32_t>(2 + end * sides + i % sides); };
+  for (int i = 0; i < sides; ++i) {
+    const std::uint32_t a0 = ring(0, i), a1 = ring(0, i + 1), b0 = ring(1, i), b1 = ring(1, i + 1);
+    m.indices.insert(m.indices.end(), {a0, a1, b1, a0, b1, b0});  // sides, outward
+    m.indices.insert(m.indices.end(), {0, a1, a0, 1, b0, b1});     // end caps, facing -w and +w
+  }
+  return m;
+}
+
+Mesh make_sphere(glm::vec3 centre, float radius, int rings, int segments) {
+  Mesh m;
+  m.positions = {centre + glm::vec3(0, radius, 0), centre - glm::vec3(0, radius, 0)};
+  for (int k = 1; k < rings; ++k) {
+    const float theta = std::numbers::pi_v<float> * static_cast<float>(k) / rings;
+    for (int j = 0; j < segments; ++j) {
+      const float phi = 2.0f * std::numbers::pi_v<float> * static_cast<float>(j) / segments;
+      m.positions.push_back(centre + radius * glm::vec3(std::sin(theta) * std::cos(phi),
+                                                        std::cos(theta),
+                                                        std::sin(theta) * std::sin(phi)));
+    }
+  }
+  // Row 0 is the north pole and row `rings` the south pole; rows between are rings of vertices.
+  const auto at = [&](int k, int j) -> std::uint32_t {
+    if (k == 0) return 0;
+    if (k == rings) return 1;
+    return static_cast<std::uint32_t>(2 + (k - 1) * segments + j % segments);
+  };
+  for (int k = 0; k < rings; ++k)
+    for (int j = 0; j < segments; ++j) {
+      const std::uint32_t a = at(k, j), b = at(k, j + 1), c = at(k + 1, j + 1), d = at(k + 1, j);
+      if (k > 0) m.indices.insert(m.indices.end(), {a, b, c});           // outward: d/dphi x d/dtheta
+      if (k + 1 < rings) m.indices.insert(m.indices.end(), {a, c, d});
+    }
+  return m;
+}
+
+void append_mesh(Mesh& mesh, const Mesh& part) {
+  const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
+  for (const std::uint32_t i : part.indices) mesh.indices.push_back(offset + i);
+}
+
+std::vector<Mesh> connected_parts(const Mesh& mesh) {
+  std::vector<std::uint32_t> parent(mesh.positions.size());
+  for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  const auto root = [&](std::uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    for (int k = 1; k < 3; ++k) parent[root(mesh.indices[3 * t + k])] = root(mesh.indices[3 * t]);
+  std::vector<Mesh> parts;
+  std::vector<std::int64_t> part_of_root(parent.size(), -1);
+  std::vector<std::int64_t> new_index(parent.size(), -1);
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    std::int64_t& part = part_of_root[root(mesh.indices[3 * t])];
+    if (part < 0) {
+      part = static_cast<std::int64_t>(parts.size());
+      parts.emplace_back();
+    }
+    Mesh& out = parts[static_cast<std::size_t>(part)];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = mesh.indices[3 * t + k];
+      if (new_index[i] < 0) {
+        new_index[i] = static_cast<std::int64_t>(out.positions.size());
+        out.positions.push_back(mesh.positions[i]);
+      }
+      out.indices.push_back(static_cast<std::uint32_t>(new_index[i]));
+    }
+  }
+  return parts;
+}
+
+Mesh make_knight() {
+  Mesh m;
+  for (const float side : {-1.0f, 1.0f}) {
+    append_mesh(m, make_tube({0.15f * side, 0.0f, 0.02f}, {0.13f * side, 0.92f, 0.0f}, 0.09f,
+                             0.12f, 12));                                         // leg
+    append_mesh(m, make_sphere({0.33f * side, 1.47f, 0.0f}, 0.14f, 8, 12));       // shoulder
+  }
+  append_mesh(m, make_tube({0.0f, 0.85f, 0.0f}, {0.0f, 1.52f, 0.0f}, 0.27f, 0.31f, 16));  // torso
+  append_mesh(m, make_tube({0.38f, 1.42f, 0.0f}, {0.46f, 0.98f, 0.2f}, 0.08f, 0.07f, 10));  // arm
+  append_mesh(m, make_tube({-0.38f, 1.42f, 0.0f}, {-0.5f, 1.05f, 0.12f}, 0.08f, 0.07f, 10));
+  append_mesh(m, make_sphere({0.0f, 1.74f, 0.0f}, 0.17f, 10, 14));                 // head
+  append_mesh(m, make_box({-0.03f, 1.8f, -0.18f}, {0.03f, 1.98f, 0.14f}));         // crest
+  append_mesh(m, make_tube({0.46f, 0.95f, 0.22f}, {0.5f, 1.95f, 0.75f}, 0.035f, 0.02f, 6));  // sword
+  append_mesh(m, make_tube({0.3f, 1.04f, 0.3f}, {0.62f, 0.88f, 0.16f}, 0.03f, 0.03f, 6));  // guard
+  append_mesh(m, make_tube({-0.52f, 1.08f, 0.16f}, {-0.58f, 1.1f, 0.24f}, 0.34f, 0.3f, 20));  // shield
+  return m;
+}
+
+namespace {
+
+// Uniform in [lo, hi) from mt19937's fully specified sequence, so the tree is the same on every
+// standard library (std::uniform_real_distribution's algorithm is left to each).
+float uniform(std::mt19937& rng, float lo, float hi) {
+  return lo + (hi - lo) * static_cast<float>(rng() >> 8) / static_cast<float>(1u << 24);
+}
+
+void grow(Mesh& tree, std::mt19937& rng, glm::vec3 base, glm::vec3 direction, float length,
+          float radius, int level) {
+  const glm::vec3 tip = base + direction * length;
+  const float tip_radius = radius * 0.65f;
+  Mesh branch = make_tube(base, tip, radius, tip_radius, level == 0 ? 12 : 8);
+  if (level == 3) {  // leaves: open quads fanned from the tip's centre vertex (vertex 1)
+    for (int leaf = 0; leaf < 5; ++leaf) {
+      const float yaw = uniform(rng, 0.0f, 6.2832f), pitch = uniform(rng, -0.6f, 0.9f);
+      const glm::vec3 out(std::cos(yaw) * std::cos(pitch), std::sin(pitch),
+                          std::sin(yaw) * std::cos(pitch));
+      const glm::vec3 across = glm::normalize(glm::cross(out, glm::vec3(0.3f, 1.0f, 0.2f))) * 0.18f;
+      const auto first = static_cast<std::uint32_t>(branch.positions.size());
+      branch.positions.insert(branch.positions.end(),
+                              {tip + out * 0.25f + across, tip + out * 0.55f, tip + out * 0.25f - across});
+      branch.indices.insert(branch.indices.end(), {1, first, first + 1, 1, first + 1, first + 2});
+    }
+  }
+  append_mesh(tree, branch);
+  if (level == 3) return;
+  for (int child = 0; child < 3; ++child) {
+    const float yaw = 2.0944f * static_cast<float>(child) + uniform(rng, -0.5f, 0.5f);
+    const float spread = uniform(rng, 0.45f, 0.8f);
+    const glm::vec3 side = glm::normalize(glm::cross(direction, glm::vec3(std::cos(yaw), 0.1f, std::sin(yaw))));
+    const glm::vec3 d = glm::normalize(direction * std::cos(spread) + side * std::sin(spread) +
+                                       glm::vec3(0.0f, 0.15f, 0.0f));
+    // Children start a little inside the parent's tip, so the tree looks joined; each stays a
+    // closed part of its own.
+    grow(tree, rng, tip - direction * (0.15f * length), d, length * uniform(rng, 0.62f, 0.75f),
+         tip_radius * 0.9f, level + 1);
+  }
+}
+
+}  // namespace
+
+Mesh make_tree(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  Mesh tree;
+  grow(tree, rng, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 1.6f, 0.16f, 0);
+  return tree;
 }
 
 }  // namespace shadowvol

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -29,5 +31,31 @@ Mesh make_box(glm::vec3 lo, glm::vec3 hi, bool with_top = true);
 // A square of side 2 * half_size in the y = 0 plane, centred on the origin, facing +y: two
 // triangles, four boundary edges (a ground plane).
 Mesh make_ground(float half_size);
+
+// A closed tube from a to b: `sides` sides, radius ra at a and rb at b, each end closed by a fan
+// around a centre vertex (the centres are vertices 0 and 1), outward-facing.
+Mesh make_tube(glm::vec3 a, glm::vec3 b, float ra, float rb, int sides);
+
+// A closed sphere of `rings` bands and `segments` slices, outward-facing.
+Mesh make_sphere(glm::vec3 centre, float radius, int rings, int segments);
+
+// Appends `part` to `mesh`, its indices moved past mesh's vertices.
+void append_mesh(Mesh& mesh, const Mesh& part);
+
+// The connected components of a mesh (triangles that share a vertex index, transitively), each
+// as a mesh of its own, in the order of their first triangles.
+std::vector<Mesh> connected_parts(const Mesh& mesh);
+
+// A standing armoured figure about 2 units tall, feet on y = 0, facing +z: legs, torso, arms,
+// shoulders, head and crest, a sword and a shield, each a closed part (some overlapping), about
+// 900 triangles. Dense and self-shadowing, in the spirit of Laine 2005's KNIGHT.
+Mesh make_knight();
+
+// A tree about 4 units tall, its root at the origin: a trunk and three levels of branches, each
+// a closed tapered tube, and open leaves (single quads) fanned out at the tips of the last
+// level, sharing the tip's centre vertex so that a branch and its leaves form one connected
+// part. The same seed gives the same tree. In the spirit of Laine 2005's TREE: a large caster
+// whose volumes cover much of the screen.
+Mesh make_tree(std::uint32_t seed = 7);
 
 }  // namespace shadowvol

@@ -58,6 +58,13 @@ Comparison verify(const Scene& scene, Method method, Generator generator = Gener
   return compare(frame, *reference);
 }
 
+// Every built-in scene, by name.
+const std::vector<std::string> kSceneNames = [] {
+  std::vector<std::string> names;
+  for (const std::string_view name : builtin_scene_names()) names.emplace_back(name);
+  return names;
+}();
+
 using SceneMethod = std::tuple<std::string, Method, Variant>;
 class BuiltinScenes : public ::testing::TestWithParam<SceneMethod> {};
 
@@ -77,8 +84,7 @@ TEST_P(BuiltinScenes, MatchTheReferenceOutsideTheOnePixelBand) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllMethods, BuiltinScenes,
-    ::testing::Combine(::testing::Values("demo", "camera-in-shadow", "light-in-view", "directional",
-                                         "nonmanifold"),
+    ::testing::Combine(::testing::ValuesIn(kSceneNames),
                        ::testing::Values(Method::zpass, Method::zfail, Method::automatic),
                        ::testing::ValuesIn(kVariants)),
     [](const auto& info) {
@@ -94,8 +100,7 @@ INSTANTIATE_TEST_SUITE_P(
 // backend only.
 INSTANTIATE_TEST_SUITE_P(
     SoftOnly, BuiltinScenes,
-    ::testing::Combine(::testing::Values("demo", "camera-in-shadow", "light-in-view", "directional",
-                                         "nonmanifold"),
+    ::testing::Combine(::testing::ValuesIn(kSceneNames),
                        ::testing::Values(Method::split_plane, Method::zpass_prefill),
                        ::testing::Values(kSoft)),
     [](const auto& info) {
@@ -196,7 +201,7 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   ASSERT_FALSE(scene.ok());
   EXPECT_EQ(scene.error().message,
             "unknown scene 'dmeo': the built-in scenes are demo, camera-in-shadow, light-in-view, "
-            "directional, nonmanifold");
+            "directional, nonmanifold, knight, knights16, tree, tree-decomposed");
 }
 
 TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
