@@ -22,6 +22,7 @@
 #include "image_file.h"
 #include "view.h"
 #include "gl/context.h"
+#include "bench_suite.h"
 #include "render/heatmap.h"
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
@@ -606,7 +607,6 @@ int main(int argc, char** argv) {
   std::vector<std::string> bench_scenes;
   for (std::string_view n : builtin_scene_names()) bench_scenes.emplace_back(n);
   int bench_frames = 10;
-  bool bench_json = false;
   CLI::App* bench_cmd = app.add_subcommand(
       "bench", "Time frames of scenes on a backend: the mean per stage over --frames frames");
   add_frame_options(bench_cmd, bench_args, scene_list);
@@ -615,7 +615,19 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--frames", bench_frames, "Frames to time per scene, after one warm-up")
       ->capture_default_str();
-  bench_cmd->add_flag("--json", bench_json, "Print one JSON array");
+  std::string bench_json_file, bench_suite, bench_csv;
+  CLI::Option* json_opt =
+      bench_cmd
+          ->add_option("--json", bench_json_file,
+                       "Print one JSON array (with --suite: write the suite's JSON to this file, "
+                       "- for standard output)")
+          ->expected(0, 1);
+  bench_cmd->add_option("--suite", bench_suite,
+                        "Run a measurement suite instead: spsv (Laine 2005's counters over the "
+                        "animated knight, knights16, tree and tree-decomposed, with zp+db, zf+db "
+                        "and spsv; 1024x768 unless --size)");
+  bench_cmd->add_option("--csv", bench_csv,
+                        "With --suite: write one row per scene, method and frame to this file");
 
   bool info_json = false;
   CLI::App* info_cmd = app.add_subcommand(
@@ -629,7 +641,27 @@ int main(int argc, char** argv) {
   }
   if (info_cmd->parsed()) return info(info_json);
   if (view_cmd->parsed()) return view(view_args, view_frames, view_screenshot);
-  if (bench_cmd->parsed()) return bench(bench_args, bench_scenes, bench_frames, bench_json);
+  if (bench_cmd->parsed()) {
+    if (!bench_suite.empty() || !bench_csv.empty()) {
+      if (bench_suite != "spsv")
+        return fail("--suite: " + (bench_suite.empty() ? std::string("--csv needs --suite")
+                                                        : "unknown suite '" + bench_suite +
+                                                              "': expected spsv"));
+      SuiteOptions suite{bench_frames, 1024, 768, bench_json_file, bench_csv};
+      if (json_opt->count() > 0 && bench_json_file.empty()) suite.json = "-";
+      if (bench_cmd->get_option("--size")->count() > 0) {
+        auto size = parse_size(bench_args.size);
+        if (!size) return fail(size.error().message);
+        suite.width = size->first, suite.height = size->second;
+        const RenderOptions sized{suite.width, suite.height, Method::automatic, Generator::automatic};
+        if (auto ok = check_options(sized); !ok) return fail("--size: " + ok.error().message);
+      }
+      return run_spsv_suite(suite);
+    }
+    if (!bench_json_file.empty())
+      return fail("--json " + bench_json_file + ": a file is for --suite; without it --json prints");
+    return bench(bench_args, bench_scenes, bench_frames, json_opt->count() > 0);
+  }
   if (render_cmd->parsed()) return render(render_args);
   if (verify_cmd->parsed()) return verify(verify_args);
   if (inspect_cmd->parsed()) {
