@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
+#include <glm/mat3x3.hpp>
 
 #include "render/near_plane_prefill.h"
 
@@ -47,6 +48,59 @@ bool may_shadow_near_plane(const glm::vec3& centre, float radius,
 // orthogonal to the plane of that line and the camera, so that it splits the volume in halves
 // as the camera sees them. Degenerate (zero) when the camera lies on the centre line, which the
 // split test reads as z-fail everywhere: still exact.
+glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light);
+
+// Laine 2005 §4.2, Eq. 5: the plane through the light and the two points p1 and p2 (the ends of
+// a long thin object's axis), so that it runs inside the flat volume such an object casts.
+// Degenerate (zero) when the light lies on the line p1 p2: z-fail everywhere, still exact.
+glm::vec4 point_point_light(const glm::vec3& p1, const glm::vec3& p2, const glm::vec4& light) {
+  const glm::dvec3 a(p1), b(p2);
+  const glm::dvec3 normal =
+      light.w != 0.0f ? glm::cross(a - glm::dvec3(light) / double(light.w),
+                                   b - glm::dvec3(light) / double(light.w))
+                      : glm::cross(b - a, glm::dvec3(light));
+  return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, a)));
+}
+
+// An object's long axis: the principal direction of its vertices (power iteration on their
+// covariance, in double), its ends where the vertices' projections end, and whether the object
+// is at least twice as long as it is wide (as far across as its farthest vertex from the axis).
+struct Axis {
+  glm::vec3 p1{0.0f}, p2{0.0f};
+  bool elongated = false;
+};
+Axis long_axis(const std::vector<glm::vec3>& points) {
+  Axis axis;
+  if (points.empty()) return axis;
+  glm::dvec3 mean(0.0);
+  for (const glm::vec3& p : points) mean += glm::dvec3(p);
+  mean /= double(points.size());
+  glm::dmat3 covariance(0.0);
+  for (const glm::vec3& p : points) {
+    const glm::dvec3 d = glm::dvec3(p) - mean;
+    covariance += glm::outerProduct(d, d);
+  }
+  glm::dvec3 dir(0.577, 0.578, 0.579);
+  for (int i = 0; i < 64; ++i) {
+    const glm::dvec3 next = covariance * dir;
+    const double len = glm::length(next);
+    if (!(len > 0.0)) return axis;  // all points coincide
+    dir = next / len;
+  }
+  double lo = INFINITY, hi = -INFINITY, width = 0.0;
+  for (const glm::vec3& p : points) {
+    const glm::dvec3 d = glm::dvec3(p) - mean;
+    const double t = glm::dot(d, dir);
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+    width = std::max(width, 2.0 * glm::length(d - t * dir));
+  }
+  axis.p1 = glm::vec3(mean + lo * dir);
+  axis.p2 = glm::vec3(mean + hi * dir);
+  axis.elongated = hi - lo >= 2.0 * width;
+  return axis;
+}
+
 glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light) {
   const glm::dvec3 centre(p);
   const glm::dvec3 along = light.w != 0.0f ? centre - glm::dvec3(light) / double(light.w)
@@ -117,6 +171,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   struct Sphere {
     glm::vec3 centre;
     float radius;
+    Axis axis;  // for split planes
   };
   std::vector<Sphere> bounds(objects);
   const bool per_object = options.method == Method::automatic ||
@@ -125,12 +180,14 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   if (per_object)
     for (std::size_t o = 0; o < objects; ++o) {
       glm::vec3 lo(INFINITY), hi(-INFINITY);
+      std::vector<glm::vec3> points;
       for (const glm::vec3& p : scene.objects[o].topology->positions) {
         const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(p, 1.0f));
         lo = glm::min(lo, q);
         hi = glm::max(hi, q);
+        if (options.method == Method::split_plane) points.push_back(q);
       }
-      bounds[o] = {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f};
+      bounds[o] = {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, long_axis(points)};
     }
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
   plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
@@ -150,8 +207,15 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
           prefill ? !near_plane_prefill_possible(plan.lights[l], plan.view_proj) : near;
       plan.zfail[l][o] = zfail;
       plan.prefill[l][o] = prefill && !zfail;
-      if (options.method == Method::split_plane && !zfail)
-        plan.split[l][o] = plane_to_clip * point_camera_light(bounds[o].centre, plan.lights[l]);
+      if (options.method == Method::split_plane && !zfail) {
+        const SplitPlaneChoice choice = scene.objects[o].split_plane;
+        const Axis& axis = bounds[o].axis;
+        const bool ppl = choice == SplitPlaneChoice::point_point_light ||
+                         (choice == SplitPlaneChoice::automatic && axis.elongated);
+        plan.split[l][o] =
+            plane_to_clip * (ppl ? point_point_light(axis.p1, axis.p2, plan.lights[l])
+                                 : point_camera_light(bounds[o].centre, plan.lights[l]));
+      }
       (zfail ? stats.objects_zfail : plan.split[l][o] ? stats.objects_split : stats.objects_zpass) += 1;
       stats.zfail_lights[o] += zfail;
     }

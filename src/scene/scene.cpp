@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/names.h"
 #include "core/projection.h"
 #include "scene/shapes.h"
 
@@ -46,6 +47,25 @@ Scene scene_at_frame(const Scene& scene, int frame) {
                                glm::vec3(0, 1, 0)) *
                    l.position;
   return s;
+}
+
+std::string_view to_string(SplitPlaneChoice choice) {
+  switch (choice) {
+    case SplitPlaneChoice::automatic:
+      return "auto";
+    case SplitPlaneChoice::point_camera_light:
+      return "pcl";
+    case SplitPlaneChoice::point_point_light:
+      return "ppl";
+  }
+  return "unknown";
+}
+
+Expected<SplitPlaneChoice> parse_split_plane_choice(std::string_view name) {
+  return parse_name(name,
+                    {SplitPlaneChoice::automatic, SplitPlaneChoice::point_camera_light,
+                     SplitPlaneChoice::point_point_light},
+                    "split plane");
 }
 
 SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,

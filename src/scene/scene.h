@@ -34,6 +34,15 @@ struct Animation {
   bool still() const { return degrees_per_frame == 0.0f && move == glm::vec3(0.0f); }
 };
 
+// How `--method spsv` builds an object's split plane (Laine 2005 §4): through the light, the
+// object's centre line, and either orthogonal to the plane of that line and the camera
+// (Point-Camera-Light, §4.1) or through the object's long axis (Point-Point-Light, §4.2, for
+// long thin parts such as branches); `auto` takes the second for an object at least twice as
+// long as it is wide.
+enum class SplitPlaneChoice : std::uint8_t { automatic, point_camera_light, point_point_light };
+std::string_view to_string(SplitPlaneChoice choice);
+Expected<SplitPlaneChoice> parse_split_plane_choice(std::string_view name);
+
 struct SceneObject {
   std::string name;
   std::shared_ptr<const Mesh> mesh;          // object space
@@ -41,6 +50,7 @@ struct SceneObject {
   glm::mat4 transform{1.0f};                 // object space -> world space, at frame 0
   Material material;
   Animation animation;
+  SplitPlaneChoice split_plane = SplitPlaneChoice::automatic;
 };
 
 struct SceneLight {

@@ -214,7 +214,7 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < root["objects"].size(); ++i) {
     const json& o = root["objects"][i];
     const std::string p = "scene.objects[" + std::to_string(i) + "]";
-    if (!r.keys(o, p, {"name", "mesh", "shape", "transform", "color", "animation"}))
+    if (!r.keys(o, p, {"name", "mesh", "shape", "transform", "color", "animation", "split_plane"}))
       return make_error(r.error);
     if (o.contains("mesh") == o.contains("shape"))
       return make_error(name + ": " + p +
@@ -263,8 +263,17 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
                  });
         }))
       return make_error(r.error);
+    SplitPlaneChoice split_plane = SplitPlaneChoice::automatic;
+    if (o.contains("split_plane")) {
+      const json& v = o["split_plane"];
+      auto choice = v.is_string() ? parse_split_plane_choice(v.get<std::string>())
+                                  : Expected<SplitPlaneChoice>(make_error("expected a string"));
+      if (!choice) return make_error(name + ": " + p + ".split_plane: " + choice.error().message);
+      split_plane = *choice;
+    }
     scene.objects.push_back(make_object(object_name, std::move(mesh), transform, color));
     scene.objects.back().animation = animation;
+    scene.objects.back().split_plane = split_plane;
   }
   return scene;
 }

@@ -4,11 +4,17 @@
 #include <array>
 #include <string>
 
+#include <cmath>
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
+#include "render/frame_plan.h"
 #include "render/heatmap.h"
 #include "render/soft_renderer.h"
 #include "scene/scene.h"
+#include "scene/shapes.h"
 
 namespace shadowvol {
 namespace {
@@ -73,6 +79,39 @@ TEST(Renderer, TileWorkAddsUpToTheCountersAndTheHeatmapShowsIt) {
       }
     }
   }
+}
+
+// Laine 2005 §4: a long thin pole gets a Point-Point-Light plane, through the light and both
+// ends of its axis; asked for Point-Camera-Light, a plane through the light and its centre.
+TEST(Renderer, SplitPlanesRunAlongLongThinObjects) {
+  Scene scene;
+  const glm::mat4 tilt = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 1.0f, -1.0f)),
+                                     0.7f, glm::vec3(0.3f, 0.2f, 1.0f));
+  scene.objects.push_back(make_object("pole", make_box({-0.05f, -1.5f, -0.05f}, {0.05f, 1.5f, 0.05f}),
+                                      tilt, glm::vec3(0.8f)));
+  scene.lights.push_back({{2.0f, 6.0f, 3.0f, 1.0f}, glm::vec3(1.0f), 1.0f});
+  scene.camera = {{0.0f, 2.0f, 6.0f}, {0.0f, 1.0f, 0.0f}};
+  const RenderOptions options{320, 200, Method::split_plane, Generator::automatic};
+  // The distance from the object-space point p to the split plane, in world units (the plane
+  // back in eye-relative space: planes map by the transpose).
+  const auto side = [](const FramePlan& plan, const glm::vec4& p) {
+    const glm::dvec4 plane = glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
+    const glm::dvec4 x = glm::dmat4(plan.model[0]) * glm::dvec4(p);
+    return std::abs(glm::dot(plane, x)) / glm::length(glm::dvec3(plane));
+  };
+  FrameStats stats;
+  const glm::vec4 end1(0, -1.5f, 0, 1), end2(0, 1.5f, 0, 1), centre(0, 0, 0, 1);
+  const FramePlan ppl = plan_frame(scene, options, stats);
+  ASSERT_TRUE(ppl.split[0][0].has_value());
+  EXPECT_LT(side(ppl, end1), 1e-4);
+  EXPECT_LT(side(ppl, end2), 1e-4);
+  scene.objects[0].split_plane = SplitPlaneChoice::point_camera_light;
+  const FramePlan pcl = plan_frame(scene, options, stats);
+  EXPECT_LT(side(pcl, centre), 1e-4);
+  EXPECT_GT(side(pcl, end1), 0.05);  // it turns to face the camera instead
+  EXPECT_EQ(parse_split_plane_choice("ppl").value(), SplitPlaneChoice::point_point_light);
+  EXPECT_EQ(parse_split_plane_choice("pp").error().message,
+            "unknown split plane 'pp': expected auto, pcl or ppl");
 }
 
 TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
