@@ -66,13 +66,13 @@ int run_spsv_suite(const SuiteOptions& options) {
     std::cerr << "shadowvol: error: --frames: " << options.frames << " is not a positive count\n";
     return 1;
   }
-  nlohmann::json json{{"suite", "spsv"},
-                      {"width", options.width},
-                      {"height", options.height},
-                      {"frames", options.frames},
-                      {"goal", {{"pixels_processed", kGoalProcessed},
-                                {"pixels_updated", kGoalUpdated}}},
-                      {"scenes", nlohmann::json::array()}};
+  nlohmann::json json{
+      {"suite", "spsv"},
+      {"width", options.width},
+      {"height", options.height},
+      {"frames", options.frames},
+      {"goal", {{"pixels_processed", kGoalProcessed}, {"pixels_updated", kGoalUpdated}}},
+      {"scenes", nlohmann::json::array()}};
   std::string csv =
       "scene,method,frame,tiles_processed,nonculled_tiles,pixels_processed,pixels_updated,"
       "count_ms\n";
@@ -80,8 +80,8 @@ int run_spsv_suite(const SuiteOptions& options) {
                                      Generator::automatic};
   bool all_met = true;
   std::FILE* table = options.json == "-" ? stderr : stdout;  // stdout may carry the JSON
-  std::fprintf(table, "%-16s %-6s %12s %12s %14s %14s %10s\n", "scene", "method", "tiles", "non-culled",
-              "px processed", "px updated", "count ms");
+  std::fprintf(table, "%-16s %-6s %12s %12s %14s %14s %10s\n", "scene", "method", "tiles",
+               "non-culled", "px processed", "px updated", "count ms");
   for (const std::string_view scene_name : kScenes) {
     const Scene scene = *builtin_scene(scene_name);
     nlohmann::json scene_json{{"name", scene.name}, {"methods", nlohmann::json::object()}};
@@ -104,26 +104,26 @@ int run_spsv_suite(const SuiteOptions& options) {
                std::to_string(series.tiles_processed[i]) + "," +
                std::to_string(series.nonculled_tiles[i]) + "," +
                std::to_string(series.pixels_processed[i]) + "," +
-               std::to_string(series.pixels_updated[i]) + "," +
-               std::to_string(series.count_ms[i]) + "\n";
+               std::to_string(series.pixels_updated[i]) + "," + std::to_string(series.count_ms[i]) +
+               "\n";
       }
-      scene_json["methods"][m.name] = {
-          {"tiles_processed", total(series.tiles_processed)},
-          {"nonculled_tiles", total(series.nonculled_tiles)},
-          {"pixels_processed", total(series.pixels_processed)},
-          {"pixels_updated", total(series.pixels_updated)},
-          {"time_ms", total(series.count_ms)},
-          {"per_frame", {{"tiles_processed", series.tiles_processed},
-                         {"nonculled_tiles", series.nonculled_tiles},
-                         {"pixels_processed", series.pixels_processed},
-                         {"pixels_updated", series.pixels_updated},
-                         {"time_ms", series.count_ms}}}};
-      std::fprintf(table, "%-16s %-6s %12llu %12llu %14llu %14llu %10.1f\n", scene.name.c_str(), m.name,
-                  static_cast<unsigned long long>(total(series.tiles_processed)),
-                  static_cast<unsigned long long>(total(series.nonculled_tiles)),
-                  static_cast<unsigned long long>(total(series.pixels_processed)),
-                  static_cast<unsigned long long>(total(series.pixels_updated)),
-                  total(series.count_ms));
+      scene_json["methods"][m.name] = {{"tiles_processed", total(series.tiles_processed)},
+                                       {"nonculled_tiles", total(series.nonculled_tiles)},
+                                       {"pixels_processed", total(series.pixels_processed)},
+                                       {"pixels_updated", total(series.pixels_updated)},
+                                       {"time_ms", total(series.count_ms)},
+                                       {"per_frame",
+                                        {{"tiles_processed", series.tiles_processed},
+                                         {"nonculled_tiles", series.nonculled_tiles},
+                                         {"pixels_processed", series.pixels_processed},
+                                         {"pixels_updated", series.pixels_updated},
+                                         {"time_ms", series.count_ms}}}};
+      std::fprintf(table, "%-16s %-6s %12llu %12llu %14llu %14llu %10.1f\n", scene.name.c_str(),
+                   m.name, static_cast<unsigned long long>(total(series.tiles_processed)),
+                   static_cast<unsigned long long>(total(series.nonculled_tiles)),
+                   static_cast<unsigned long long>(total(series.pixels_processed)),
+                   static_cast<unsigned long long>(total(series.pixels_updated)),
+                   total(series.count_ms));
       if (m.method == Method::split_plane) {
         spsv_processed = total(series.pixels_processed);
         spsv_updated = total(series.pixels_updated);
@@ -138,11 +138,13 @@ int run_spsv_suite(const SuiteOptions& options) {
       const double updated = double(total(series.pixels_updated)) / double(spsv_updated);
       const bool met = processed >= kGoalProcessed && updated >= kGoalUpdated;
       all_met = all_met && met;
-      ratios[name] = {{"pixels_processed", processed}, {"pixels_updated", updated}, {"goal_met", met}};
-      std::fprintf(table, "%-16s %s / spsv: pixels processed %.2fx (goal >= %.2f), updated %.2fx "
-                  "(goal >= %.2f)%s\n",
-                  "", name.c_str(), processed, kGoalProcessed, updated, kGoalUpdated,
-                  met ? "" : "  NOT MET");
+      ratios[name] = {
+          {"pixels_processed", processed}, {"pixels_updated", updated}, {"goal_met", met}};
+      std::fprintf(table,
+                   "%-16s %s / spsv: pixels processed %.2fx (goal >= %.2f), updated %.2fx "
+                   "(goal >= %.2f)%s\n",
+                   "", name.c_str(), processed, kGoalProcessed, updated, kGoalUpdated,
+                   met ? "" : "  NOT MET");
     }
     scene_json["baseline_over_spsv"] = ratios;
     json["scenes"].push_back(scene_json);
@@ -150,9 +152,10 @@ int run_spsv_suite(const SuiteOptions& options) {
   json["paper_largest"] = {{"pixels_processed", kPaperBestProcessed},
                            {"pixels_updated", kPaperBestUpdated}};
   json["goal_met"] = all_met;
-  std::fprintf(table, "goal (every baseline >= %.2fx pixels processed and >= %.2fx updated on every "
-              "scene): %s\n",
-              kGoalProcessed, kGoalUpdated, all_met ? "met" : "not met");
+  std::fprintf(table,
+               "goal (every baseline >= %.2fx pixels processed and >= %.2fx updated on every "
+               "scene): %s\n",
+               kGoalProcessed, kGoalUpdated, all_met ? "met" : "not met");
   if (!options.json.empty() && !write_text(options.json, json.dump(2) + "\n")) {
     std::cerr << "shadowvol: error: " << options.json << ": cannot write the JSON\n";
     return 1;

@@ -258,6 +258,16 @@ struct ResolvedFrame {
   gl::GlSettings gl;
 };
 
+// Takes the soft backend for something only it draws (`reason` says what and why): an error
+// under --backend gl, a note under auto.
+Expected<void> take_soft_backend(Backend& backend, const std::string& reason) {
+  if (backend == Backend::gl) return make_error(reason + "; use --backend soft");
+  if (backend == Backend::automatic)
+    std::cerr << "shadowvol: backend auto: soft, since " << reason << "\n";
+  backend = Backend::soft;
+  return {};
+}
+
 // The scene and the options, every value checked, or the first problem as a message.
 Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   auto scene = load_scene(args.scene);
@@ -275,16 +285,13 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   auto backend = parse_backend(args.backend);
   if (!backend) return make_error("--backend: " + backend.error().message);
-  if (soft_only(*method)) {
-    const std::string what = "--method " + std::string(to_string(*method));
-    if (*backend == Backend::gl)
-      return make_error(what + " runs in the soft backend only (the split test and the ZP+ "
-                               "pre-fill are built in the software rasterizer); use --backend soft");
-    if (*backend == Backend::automatic)
-      std::cerr << "shadowvol: backend auto: soft, since " << what
-                << " runs in the soft backend only\n";
-    *backend = Backend::soft;
-  }
+  if (soft_only(*method))
+    if (auto ok = take_soft_backend(
+            *backend, "--method " + std::string(to_string(*method)) +
+                          " runs in the soft backend only (the split test and the ZP+ pre-fill "
+                          "are built in the software rasterizer)");
+        !ok)
+      return ok.error();
   auto volumes = gl::parse_volume_path(args.volumes);
   if (!volumes) return make_error("--volumes: " + volumes.error().message);
   auto counts = gl::parse_count_target(args.counts);
@@ -318,13 +325,11 @@ int render(const RenderArgs& args) {
   RenderOptions options = resolved->options;
   options.show_volumes = args.show_volumes;
   options.tile_work = !args.heatmap.empty();
-  if (options.tile_work && resolved->backend != Backend::soft) {
-    if (resolved->backend == Backend::gl)
-      return fail("--heatmap maps the software rasterizer's tiles; use --backend soft");
-    std::cerr << "shadowvol: backend auto: soft, since --heatmap maps the software rasterizer's "
-                 "tiles\n";
-    resolved->backend = Backend::soft;
-  }
+  if (options.tile_work)
+    if (auto ok = take_soft_backend(resolved->backend,
+                                    "--heatmap maps the software rasterizer's tiles");
+        !ok)
+      return fail(ok.error().message);
   if (args.frames < 1)
     return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
 
@@ -351,8 +356,9 @@ int render(const RenderArgs& args) {
   }
   if (args.stats) {
     const FrameStats& s = frame.stats;
-    std::printf("  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms, read-back %.1f ms\n",
-                s.ms_depth, s.ms_volumes, s.ms_counts, s.ms_shade, s.ms_readback);
+    std::printf(
+        "  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms, read-back %.1f ms\n",
+        s.ms_depth, s.ms_volumes, s.ms_counts, s.ms_shade, s.ms_readback);
     std::printf(
         "  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d, by a split "
         "plane %d, volumes built %d, reused %d\n",
@@ -429,7 +435,8 @@ int view(const FrameArgs& frame, int frames, const std::string& screenshot) {
   auto resolved = resolve(frame);
   if (!resolved) return fail(resolved.error().message);
   if (frames < 0) return fail("--frames: " + std::to_string(frames) + " is not a count");
-  return run_viewer({std::move(resolved->scene), resolved->options, resolved->gl, frames, screenshot});
+  return run_viewer(
+      {std::move(resolved->scene), resolved->options, resolved->gl, frames, screenshot});
 }
 
 // Frame times of scenes on one backend: the mean over `frames` frames after one warm-up frame
@@ -458,7 +465,8 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
       const auto start = std::chrono::steady_clock::now();
       const Frame f = renderer->render(resolved->scene, options);
       const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
       if (i < 0) continue;  // warm-up
       wall += ms;
       sum.ms_depth += f.stats.ms_depth;
@@ -643,23 +651,24 @@ int main(int argc, char** argv) {
   if (view_cmd->parsed()) return view(view_args, view_frames, view_screenshot);
   if (bench_cmd->parsed()) {
     if (!bench_suite.empty() || !bench_csv.empty()) {
+      if (bench_suite.empty()) return fail("--csv needs --suite spsv");
       if (bench_suite != "spsv")
-        return fail("--suite: " + (bench_suite.empty() ? std::string("--csv needs --suite")
-                                                        : "unknown suite '" + bench_suite +
-                                                              "': expected spsv"));
+        return fail("--suite: unknown suite '" + bench_suite + "': expected spsv");
       SuiteOptions suite{bench_frames, 1024, 768, bench_json_file, bench_csv};
       if (json_opt->count() > 0 && bench_json_file.empty()) suite.json = "-";
       if (bench_cmd->get_option("--size")->count() > 0) {
         auto size = parse_size(bench_args.size);
         if (!size) return fail(size.error().message);
         suite.width = size->first, suite.height = size->second;
-        const RenderOptions sized{suite.width, suite.height, Method::automatic, Generator::automatic};
+        const RenderOptions sized{suite.width, suite.height, Method::automatic,
+                                  Generator::automatic};
         if (auto ok = check_options(sized); !ok) return fail("--size: " + ok.error().message);
       }
       return run_spsv_suite(suite);
     }
     if (!bench_json_file.empty())
-      return fail("--json " + bench_json_file + ": a file is for --suite; without it --json prints");
+      return fail("--json " + bench_json_file +
+                  ": a file is for --suite; without it --json prints");
     return bench(bench_args, bench_scenes, bench_frames, json_opt->count() > 0);
   }
   if (render_cmd->parsed()) return render(render_args);

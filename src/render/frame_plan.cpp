@@ -161,19 +161,20 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   for (const SceneLight& light : scene.lights)
     plan.lights.push_back(eye_relative(light.position, scene.camera.position));
 
-  // The near-plane rectangle and each object's bounding sphere, eye-relative, for `auto`.
+  // The near-plane rectangle and each object's bounds, eye-relative, for the methods that
+  // decide per object (and its long axis for split planes).
   std::array<glm::vec3, 4> near_rect;
   for (int i = 0; i < 4; ++i) {
     const glm::vec4 c =
         plan.inv_view_proj * glm::vec4(i == 1 || i == 2 ? 1 : -1, i >= 2 ? 1 : -1, 1, 1);
     near_rect[i] = glm::vec3(c) / c.w;
   }
-  struct Sphere {
-    glm::vec3 centre;
-    float radius;
-    Axis axis;  // for split planes
+  struct Bounds {
+    glm::vec3 centre;  // of the bounding box
+    float radius;      // of the sphere about it
+    Axis axis;
   };
-  std::vector<Sphere> bounds(objects);
+  std::vector<Bounds> bounds(objects);
   const bool per_object = options.method == Method::automatic ||
                           options.method == Method::split_plane ||
                           options.method == Method::zpass_prefill;
@@ -196,17 +197,16 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   const glm::mat4 plane_to_clip = glm::transpose(plan.inv_view_proj);  // planes map by M^-T
   const bool prefills =
       options.method == Method::split_plane || options.method == Method::zpass_prefill;
-  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+  for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+    const bool can_prefill =
+        prefills && near_plane_prefill_possible(plan.lights[l], plan.view_proj);
     for (std::size_t o = 0; o < objects; ++o) {
-      const bool near =
-          per_object
-              ? may_shadow_near_plane(bounds[o].centre, bounds[o].radius, near_rect, plan.lights[l])
-              : options.method == Method::zfail;
-      const bool prefill = prefills && near;
-      const bool zfail =
-          prefill ? !near_plane_prefill_possible(plan.lights[l], plan.view_proj) : near;
+      const bool reaches_near =
+          per_object &&
+          may_shadow_near_plane(bounds[o].centre, bounds[o].radius, near_rect, plan.lights[l]);
+      const bool zfail = options.method == Method::zfail || (reaches_near && !can_prefill);
       plan.zfail[l][o] = zfail;
-      plan.prefill[l][o] = prefill && !zfail;
+      plan.prefill[l][o] = reaches_near && can_prefill;
       if (options.method == Method::split_plane && !zfail) {
         const SplitPlaneChoice choice = scene.objects[o].split_plane;
         const Axis& axis = bounds[o].axis;
@@ -216,9 +216,12 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
             plane_to_clip * (ppl ? point_point_light(axis.p1, axis.p2, plan.lights[l])
                                  : point_camera_light(bounds[o].centre, plan.lights[l]));
       }
-      (zfail ? stats.objects_zfail : plan.split[l][o] ? stats.objects_split : stats.objects_zpass) += 1;
+      (zfail              ? stats.objects_zfail
+       : plan.split[l][o] ? stats.objects_split
+                          : stats.objects_zpass) += 1;
       stats.zfail_lights[o] += zfail;
     }
+  }
   return plan;
 }
 

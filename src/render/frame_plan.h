@@ -48,7 +48,9 @@ struct FramePlan {
   bool counts_caps(std::size_t l, std::size_t o) const {
     return zfail[l][o] || split[l][o].has_value();
   }
-  bool builds_caps(std::size_t l, std::size_t o) const { return counts_caps(l, o) || prefill[l][o]; }
+  bool builds_caps(std::size_t l, std::size_t o) const {
+    return counts_caps(l, o) || prefill[l][o];
+  }
 
   // (object, face) of a depth-pass id, or object -1 when the id is past the last face.
   std::pair<std::int32_t, std::uint32_t> object_of(std::uint32_t id) const;

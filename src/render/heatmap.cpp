@@ -11,7 +11,7 @@
 namespace shadowvol {
 namespace {
 
-constexpr int kGap = 4;         // between the panels
+constexpr int kGap = 4;           // between the panels
 constexpr int kScaleHeight = 12;  // the bar along the bottom, under a gap
 
 // Black, purple, red, orange, pale yellow: dark where little happens, light where much does.
@@ -49,8 +49,8 @@ Heatmap tile_work_heatmap(const Frame& frame) {
     out.passes_at_top =
         std::max(out.passes_at_top, frame.tile_work[t].pixels_processed / tile_pixels(t));
   out.image = {2 * w + kGap, h + kGap + kScaleHeight,
-               std::vector<std::uint8_t>(static_cast<std::size_t>(2 * w + kGap) *
-                                             (h + kGap + kScaleHeight) * 4, 255)};
+               std::vector<std::uint8_t>(
+                   static_cast<std::size_t>(2 * w + kGap) * (h + kGap + kScaleHeight) * 4, 255)};
   for (int panel = 0; panel < 2; ++panel)
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {

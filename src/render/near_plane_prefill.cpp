@@ -1,6 +1,7 @@
 #include "render/near_plane_prefill.h"
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 
 #include <glm/mat4x4.hpp>
@@ -32,7 +33,7 @@ bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_p
   return glm::dot(near_plane(view_proj), affine(light)) != 0.0;
 }
 
-bool append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
+void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
                                const glm::vec4& light, const glm::mat4& view_proj,
                                std::vector<glm::vec4>& triangles,
                                std::vector<std::int32_t>& weights) {
@@ -40,7 +41,7 @@ bool append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4&
   const glm::dvec4 near = near_plane(view_proj);
   const glm::dvec4 l = affine(light);
   const double light_side = glm::dot(near, l);
-  if (light_side == 0.0) return false;
+  assert(light_side != 0.0);  // near_plane_prefill_possible
   const double s = light_side > 0.0 ? 1.0 : -1.0;
   const bool point = l.w != 0.0;
   const glm::dmat4 to_world(model);
@@ -73,7 +74,6 @@ bool append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4&
       weights.push_back(weight);
     }
   }
-  return true;
 }
 
 }  // namespace shadowvol

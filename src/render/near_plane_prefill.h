@@ -20,18 +20,18 @@
 
 namespace shadowvol {
 
+// Whether the pre-fill can be made for this light: not when it lies in the near plane itself,
+// where the projection degenerates; such a volume is drawn by z-fail.
+bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_proj);
+
 // Appends the pre-fill of one volume: its light caps (object space, with `model` to eye-relative
 // space and `mirror` = -1 where that transform mirrors), seen from `light` (eye-relative) on the
 // near plane of `view_proj` (core/projection.h). The triangles are in clip space with their
 // depth set to 1/2 (they carry counts, not depth); the weights are signed so that a front face
 // adds what the volume gains along the segment from the light. Each cap is first cut to the
 // part that can cross such a segment: on the light's side of the near plane and, for a point
-// light, no farther from it than the light. Returns false, appending nothing, when the light
-// lies in the near plane itself, where the projection degenerates: draw that volume by z-fail.
-// Whether the pre-fill can be made for this light: not when it lies in the near plane.
-bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_proj);
-
-bool append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
+// light, no farther from it than the light. Needs near_plane_prefill_possible(light, view_proj).
+void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
                                const glm::vec4& light, const glm::mat4& view_proj,
                                std::vector<glm::vec4>& triangles,
                                std::vector<std::int32_t>& weights);

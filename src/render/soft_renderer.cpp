@@ -106,10 +106,8 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
       if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
         prefill_tris.clear();
         prefill_weights.clear();
-        [[maybe_unused]] const bool made = append_near_plane_prefill(
-            v.light_caps, plan.model[o], plan.weight_sign[o], plan.lights[l], plan.view_proj,
-            prefill_tris, prefill_weights);
-        assert(made);  // the plan takes z-fail where it cannot be made
+        append_near_plane_prefill(v.light_caps, plan.model[o], plan.weight_sign[o],
+                                  plan.lights[l], plan.view_proj, prefill_tris, prefill_weights);
         soft::draw_counts(target_, prefill_tris, prefill_weights, soft::CountRule::prefill,
                           stats.counts, {}, {split.value_or(glm::vec4(0.0f)),
                                              split ? soft::SplitTiles::zpass_only
@@ -131,10 +129,10 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
     target_.take_nonzero_counts(frame.shadowed[l]);
     stats.ms_counts += ms_since(start);
   }
+  frame.tile_work = std::move(target_.tile_work);  // the next frame sizes it afresh
 
   // --- shading: ambient everywhere, each light where it is not shadowed ---
   start = Clock::now();
-  frame.tile_work = target_.tile_work;
   frame.image = {w, h, std::vector<std::uint8_t>(pixels * 4)};
   std::vector<std::vector<glm::vec3>> world(scene.objects.size());  // vertices, once per frame
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
@@ -172,8 +170,8 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
               glm::normalize(lp.w != 0.0f ? glm::vec3(lp) / lp.w - pos : glm::vec3(lp));
           const float lambert = glm::dot(n, to_light);
           if (lambert <= 0.0f) continue;
-          const float spec = std::pow(std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))),
-                                      shading::kShininess);
+          const float spec = std::pow(
+              std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))), shading::kShininess);
           color += light.color * light.intensity *
                    (albedo * lambert + glm::vec3(shading::kSpecular * spec));
         }

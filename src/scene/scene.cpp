@@ -240,7 +240,8 @@ Scene knights16() {
   const auto shared = std::make_shared<const Mesh>(make_knight());
   const auto topology = std::make_shared<const Topology>(build_topology(*shared));
   for (int i = 0; i < 16; ++i) {
-    const float x = 1.6f * static_cast<float>(i % 4) - 2.4f, z = 1.6f * static_cast<float>(i / 4) - 2.4f;
+    const float x = 1.6f * static_cast<float>(i % 4) - 2.4f,
+                z = 1.6f * static_cast<float>(i / 4) - 2.4f;
     SceneObject knight{"knight" + std::to_string(i), shared, topology,
                        place({x, 0.0f, z}, 37.0f * static_cast<float>(i)), {{0.7f, 0.72f, 0.78f}},
                        {}};

@@ -76,7 +76,9 @@ Mesh make_tube(glm::vec3 a, glm::vec3 b, float ra, float rb, int sides) {
       const float t = 2.0f * std::numbers::pi_v<float> * static_cast<float>(i) / sides;
       m.positions.push_back(centre + radius * (std::cos(t) * u + std::sin(t) * v));
     }
-  const auto ring = [&](int end, int i) { return static_cast<std::uint32_t>(2 + end * sides + i % sides); };
+  const auto ring = [&](int end, int i) {
+    return static_cast<std::uint32_t>(2 + end * sides + i % sides);
+  };
   for (int i = 0; i < sides; ++i) {
     const std::uint32_t a0 = ring(0, i), a1 = ring(0, i + 1), b0 = ring(1, i), b1 = ring(1, i + 1);
     m.indices.insert(m.indices.end(), {a0, a1, b1, a0, b1, b0});  // sides, outward
@@ -106,7 +108,7 @@ Mesh make_sphere(glm::vec3 centre, float radius, int rings, int segments) {
   for (int k = 0; k < rings; ++k)
     for (int j = 0; j < segments; ++j) {
       const std::uint32_t a = at(k, j), b = at(k, j + 1), c = at(k + 1, j + 1), d = at(k + 1, j);
-      if (k > 0) m.indices.insert(m.indices.end(), {a, b, c});           // outward: d/dphi x d/dtheta
+      if (k > 0) m.indices.insert(m.indices.end(), {a, b, c});  // outward: d/dphi x d/dtheta
       if (k + 1 < rings) m.indices.insert(m.indices.end(), {a, c, d});
     }
   return m;
@@ -161,9 +163,11 @@ Mesh make_knight() {
   append_mesh(m, make_tube({-0.38f, 1.42f, 0.0f}, {-0.5f, 1.05f, 0.12f}, 0.08f, 0.07f, 10));
   append_mesh(m, make_sphere({0.0f, 1.74f, 0.0f}, 0.17f, 10, 14));                 // head
   append_mesh(m, make_box({-0.03f, 1.8f, -0.18f}, {0.03f, 1.98f, 0.14f}));         // crest
-  append_mesh(m, make_tube({0.46f, 0.95f, 0.22f}, {0.5f, 1.95f, 0.75f}, 0.035f, 0.02f, 6));  // sword
+  append_mesh(m,
+              make_tube({0.46f, 0.95f, 0.22f}, {0.5f, 1.95f, 0.75f}, 0.035f, 0.02f, 6));   // sword
   append_mesh(m, make_tube({0.3f, 1.04f, 0.3f}, {0.62f, 0.88f, 0.16f}, 0.03f, 0.03f, 6));  // guard
-  append_mesh(m, make_tube({-0.52f, 1.08f, 0.16f}, {-0.58f, 1.1f, 0.24f}, 0.34f, 0.3f, 20));  // shield
+  append_mesh(m,
+              make_tube({-0.52f, 1.08f, 0.16f}, {-0.58f, 1.1f, 0.24f}, 0.34f, 0.3f, 20));  // shield
   return m;
 }
 
@@ -187,8 +191,9 @@ void grow(Mesh& tree, std::mt19937& rng, glm::vec3 base, glm::vec3 direction, fl
                           std::sin(yaw) * std::cos(pitch));
       const glm::vec3 across = glm::normalize(glm::cross(out, glm::vec3(0.3f, 1.0f, 0.2f))) * 0.18f;
       const auto first = static_cast<std::uint32_t>(branch.positions.size());
-      branch.positions.insert(branch.positions.end(),
-                              {tip + out * 0.25f + across, tip + out * 0.55f, tip + out * 0.25f - across});
+      branch.positions.insert(
+          branch.positions.end(),
+          {tip + out * 0.25f + across, tip + out * 0.55f, tip + out * 0.25f - across});
       branch.indices.insert(branch.indices.end(), {1, first, first + 1, 1, first + 1, first + 2});
     }
   }
@@ -197,7 +202,8 @@ void grow(Mesh& tree, std::mt19937& rng, glm::vec3 base, glm::vec3 direction, fl
   for (int child = 0; child < 3; ++child) {
     const float yaw = 2.0944f * static_cast<float>(child) + uniform(rng, -0.5f, 0.5f);
     const float spread = uniform(rng, 0.45f, 0.8f);
-    const glm::vec3 side = glm::normalize(glm::cross(direction, glm::vec3(std::cos(yaw), 0.1f, std::sin(yaw))));
+    const glm::vec3 side =
+        glm::normalize(glm::cross(direction, glm::vec3(std::cos(yaw), 0.1f, std::sin(yaw))));
     const glm::vec3 d = glm::normalize(direction * std::cos(spread) + side * std::sin(spread) +
                                        glm::vec3(0.0f, 0.15f, 0.0f));
     // Children start a little inside the parent's tip, so the tree looks joined; each stays a

@@ -270,10 +270,9 @@ struct TileDepthPlane {
 // tell whether any pixel centre of the tile can be inside, and whether all are (then no edge is
 // evaluated per pixel). Then tile_test(hi-z bounds, the triangle's depth range over the tile)
 // gives the tile's TileVerdict. Pixels are then tested a tile row at a time with 32-bit edge
-// functions: within a tile that an edge cuts, E = E0 + 256 k,
-// with k = dx j - dy i below 2^28, so E >= 0 exactly when floor(E0 / 256) + k >= 0, and
-// floor(E0 / 256) is itself below 2^28 there.
-// `work`: the band's TileWork entries, or null to record none.
+// functions: within a tile that an edge cuts, E = E0 + 256 k, with k = dx j - dy i below 2^28,
+// so E >= 0 exactly when floor(E0 / 256) + k >= 0, and floor(E0 / 256) is itself below 2^28
+// there. `work`: the band's TileWork entries, or null to record none.
 template <class TileTest, class Row>
 void raster(const Target& target, const Setup& s, int band, Counters& counters, TileWork* work,
             TileTest&& tile_test, Row&& row) {
@@ -519,8 +518,10 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
 CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::vec4& plane) {
   const TileDepth& tile =
       target.tile_depth[static_cast<std::size_t>(tile_y) * target.tiles_x + tile_x];
-  const float x = (float(tile_x * kTileSize) + kTileSize / 2.0f) / float(target.width) * 2.0f - 1.0f;
-  const float y = 1.0f - (float(tile_y * kTileSize) + kTileSize / 2.0f) / float(target.height) * 2.0f;
+  const float x =
+      (float(tile_x * kTileSize) + kTileSize / 2.0f) / float(target.width) * 2.0f - 1.0f;
+  const float y =
+      1.0f - (float(tile_y * kTileSize) + kTileSize / 2.0f) / float(target.height) * 2.0f;
   // Laine 2005 Eq. 8, with tile.zmin the farthest depth (reversed depth): the side of the plane
   // the point lies on, against the camera's side, sign(plane.z).
   const float side = plane.x * x + plane.y * y + plane.z * tile.zmin + plane.w;

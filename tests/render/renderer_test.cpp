@@ -66,7 +66,8 @@ TEST(Renderer, TileWorkAddsUpToTheCountersAndTheHeatmapShowsIt) {
     EXPECT_GE(map.passes_at_top, 1.0);
     // A tile without work shows the grey scene; one with work, a colour.
     const auto rgb_at = [&](int x, int y) {
-      const std::uint8_t* p = &map.image.rgba[4 * (static_cast<std::size_t>(y) * map.image.width + x)];
+      const std::uint8_t* p =
+          &map.image.rgba[4 * (static_cast<std::size_t>(y) * map.image.width + x)];
       return std::array<int, 3>{p[0], p[1], p[2]};
     };
     for (std::size_t t = 0; t < frame.tile_work.size(); ++t) {
@@ -87,15 +88,16 @@ TEST(Renderer, SplitPlanesRunAlongLongThinObjects) {
   Scene scene;
   const glm::mat4 tilt = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 1.0f, -1.0f)),
                                      0.7f, glm::vec3(0.3f, 0.2f, 1.0f));
-  scene.objects.push_back(make_object("pole", make_box({-0.05f, -1.5f, -0.05f}, {0.05f, 1.5f, 0.05f}),
-                                      tilt, glm::vec3(0.8f)));
+  scene.objects.push_back(make_object(
+      "pole", make_box({-0.05f, -1.5f, -0.05f}, {0.05f, 1.5f, 0.05f}), tilt, glm::vec3(0.8f)));
   scene.lights.push_back({{2.0f, 6.0f, 3.0f, 1.0f}, glm::vec3(1.0f), 1.0f});
   scene.camera = {{0.0f, 2.0f, 6.0f}, {0.0f, 1.0f, 0.0f}};
   const RenderOptions options{320, 200, Method::split_plane, Generator::automatic};
   // The distance from the object-space point p to the split plane, in world units (the plane
   // back in eye-relative space: planes map by the transpose).
   const auto side = [](const FramePlan& plan, const glm::vec4& p) {
-    const glm::dvec4 plane = glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
+    const glm::dvec4 plane =
+        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
     const glm::dvec4 x = glm::dmat4(plan.model[0]) * glm::dvec4(p);
     return std::abs(glm::dot(plane, x)) / glm::length(glm::dvec3(plane));
   };
@@ -145,7 +147,8 @@ TEST(Renderer, OptionsOutsideTheRasterizersLimitsAreRefused) {
   EXPECT_FALSE(check_options({640, 5000}).ok());
   auto method = parse_method("zfast");
   ASSERT_FALSE(method.ok());
-  EXPECT_EQ(method.error().message, "unknown method 'zfast': expected zpass, zfail, auto, spsv or zp+db");
+  EXPECT_EQ(method.error().message,
+            "unknown method 'zfast': expected zpass, zfail, auto, spsv or zp+db");
 }
 
 }  // namespace

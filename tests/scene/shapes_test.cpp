@@ -60,7 +60,8 @@ TEST(Shapes, TubesAndSpheresAreClosedOutwardManifoldsOfTheRightVolume) {
 TEST(Shapes, KnightAndTreeAreMadeOfClosedPartsAndTheTreeSplitsIntoItsBranches) {
   const Mesh knight = make_knight();
   const std::vector<Mesh> knight_parts = connected_parts(knight);
-  EXPECT_EQ(knight_parts.size(), 12u);  // legs, shoulders, arms, torso, head, crest, sword, guard, shield
+  EXPECT_EQ(knight_parts.size(),
+            12u);  // legs, shoulders, arms, torso, head, crest, sword, guard, shield
   for (const Mesh& part : knight_parts) {
     EXPECT_TRUE(build_topology(part).report.closed_manifold);
     EXPECT_GT(signed_volume(part), 0.0);

@@ -347,12 +347,14 @@ TEST(Raster, ASplitPlaneChoosesPerTileWithoutChangingAnyCount) {
                                       proj * glm::vec4(0, 100, -30, 1)};
     for (int i = 0; i < 6; ++i)
       for (int k = 0; k < 3; ++k)
-        surface.push_back(proj * glm::vec4(4.0f * unit(rng), 3.0f * unit(rng), -6.0f + 2.0f * unit(rng), 1));
+        surface.push_back(
+            proj * glm::vec4(4.0f * unit(rng), 3.0f * unit(rng), -6.0f + 2.0f * unit(rng), 1));
     draw_depth(target, surface, 0, ignored);
     target.update_tile_depth();
     // The volume: a tetrahedron, faces wound outwards, between eye depth 2 and 9.
     glm::vec4 v[4];
-    for (glm::vec4& p : v) p = glm::vec4(2.5f * unit(rng), 2.0f * unit(rng), -5.5f + 3.5f * unit(rng), 1);
+    for (glm::vec4& p : v)
+      p = glm::vec4(2.5f * unit(rng), 2.0f * unit(rng), -5.5f + 3.5f * unit(rng), 1);
     const glm::vec3 a(v[0]), b(v[1]), c(v[2]), d(v[3]);
     if (glm::dot(glm::cross(b - a, c - a), d - a) > 0.0f) std::swap(v[1], v[2]);  // d behind abc
     const int faces[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
@@ -375,8 +377,10 @@ TEST(Raster, ASplitPlaneChoosesPerTileWithoutChangingAnyCount) {
       Counters all, zfail_tiles, zpass_tiles;
       EXPECT_EQ(counts(CountRule::split, split, all), expected) << trial << "/" << plane;
       // The two halves of the tiles add up to the whole, tile for tile.
-      std::vector<std::int32_t> halves = counts(CountRule::split, {split.plane, SplitTiles::zfail_only}, zfail_tiles);
-      const std::vector<std::int32_t> other = counts(CountRule::split, {split.plane, SplitTiles::zpass_only}, zpass_tiles);
+      std::vector<std::int32_t> halves =
+          counts(CountRule::split, {split.plane, SplitTiles::zfail_only}, zfail_tiles);
+      const std::vector<std::int32_t> other =
+          counts(CountRule::split, {split.plane, SplitTiles::zpass_only}, zpass_tiles);
       for (std::size_t p = 0; p < halves.size(); ++p) halves[p] += other[p];
       EXPECT_EQ(halves, expected) << trial << "/" << plane;
       EXPECT_EQ(zfail_tiles.pixels_processed + zpass_tiles.pixels_processed, all.pixels_processed);

@@ -139,9 +139,9 @@ TEST(NearPlanePrefill, MakesZPassExactWithTheEyeInShadow) {
                   glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 2.2f, 6.0f)), {0.5f, 0.5f, 0.5f});
   behind.lights[0].position = {0.0f, 2.5f, 9.0f, 1.0f};
   Scene& ahead = cases[4].scene;  // the eye at (0, 2, 3.5) looks down -z
-  ahead.objects[slab] =
-      make_object("slab", make_box({-1.5f, -0.1f, -1.5f}, {1.5f, 0.1f, 1.5f}),
-                  glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 4.0f, -1.25f)), {0.5f, 0.5f, 0.5f});
+  ahead.objects[slab] = make_object("slab", make_box({-1.5f, -0.1f, -1.5f}, {1.5f, 0.1f, 1.5f}),
+                                    glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 4.0f, -1.25f)),
+                                    {0.5f, 0.5f, 0.5f});
   ahead.lights[0].position = {0.0f, 6.0f, -6.0f, 1.0f};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -159,15 +159,18 @@ TEST(BuiltinScenes, EveryGeneratorMatchesOnTheNonManifoldScene) {
   ASSERT_TRUE(scene.ok());
   // Multiplicity has weights of 2 here: the gl backend counts them in the additive target, or
   // in the stencil buffer by drawing those triangles twice.
-  const Variant gl_stencil{"gl_stencil", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::stencil}};
+  const Variant gl_stencil{
+      "gl_stencil", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::stencil}};
   for (const Variant& v : {kSoft, kGlCpu, kGlGpu, kGlAdditive, gl_stencil})
     for (Generator g : {Generator::standard, Generator::robust, Generator::multiplicity}) {
-      if (g == Generator::standard || (g == Generator::multiplicity && v.gl.volumes == gl::VolumePath::gpu))
+      if (g == Generator::standard ||
+          (g == Generator::multiplicity && v.gl.volumes == gl::VolumePath::gpu))
         continue;
       for (Method m : {Method::zpass, Method::zfail}) {
         const Comparison c = verify(*scene, m, g, v);
         EXPECT_GT(c.pixels_compared, 0u);
-        EXPECT_EQ(c.mismatched_outside_band, 0u) << v.name << " " << to_string(g) << " " << to_string(m);
+        EXPECT_EQ(c.mismatched_outside_band, 0u)
+            << v.name << " " << to_string(g) << " " << to_string(m);
       }
     }
 }
@@ -177,7 +180,8 @@ TEST(BuiltinScenes, GeometryShaderStandardVolumesMatchOnClosedMeshes) {
   for (const char* name : {"demo", "directional"}) {
     auto scene = builtin_scene(name);
     ASSERT_TRUE(scene.ok());
-    std::erase_if(scene->objects, [](const SceneObject& o) { return !o.topology->report.closed_manifold; });
+    std::erase_if(scene->objects,
+                  [](const SceneObject& o) { return !o.topology->report.closed_manifold; });
     for (Method m : {Method::zpass, Method::zfail}) {
       const Comparison c = verify(*scene, m, Generator::standard, kGlGpu);
       EXPECT_GT(c.pixels_compared, 0u);
@@ -192,7 +196,9 @@ TEST(BuiltinScenes, AnimatedFramesMatchTheReference) {
   for (const Variant& v : kVariants)
     for (int f : {7, 45})
       for (Method m : {Method::zpass, Method::zfail})
-        EXPECT_EQ(verify(scene_at_frame(*scene, f), m, Generator::automatic, v).mismatched_outside_band, 0u)
+        EXPECT_EQ(
+            verify(scene_at_frame(*scene, f), m, Generator::automatic, v).mismatched_outside_band,
+            0u)
             << v.name << " " << f;
 }
 
@@ -230,7 +236,8 @@ TEST(SceneFiles, FarFromTheOriginStillMatchesTheReference) {
       for (Method m : {Method::zpass, Method::zfail}) {
         const Comparison c = verify(far, m, Generator::automatic, v);
         EXPECT_GT(c.pixels_compared, std::size_t{kWidth * kHeight / 2});
-        EXPECT_EQ(c.mismatched_outside_band, 0u) << v.name << " " << distance << " " << to_string(m);
+        EXPECT_EQ(c.mismatched_outside_band, 0u)
+            << v.name << " " << distance << " " << to_string(m);
       }
   }
 }
@@ -345,7 +352,8 @@ TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
         for (int y = 0; y < kHeight; ++y)
           for (int x = 0; x < kWidth; ++x) {
             const std::size_t p = static_cast<std::size_t>(y) * kWidth + x;
-            if (soft.object[p] == gl.object[p] && soft.shadowed[l][p] == gl.shadowed[l][p]) continue;
+            if (soft.object[p] == gl.object[p] && soft.shadowed[l][p] == gl.shadowed[l][p])
+              continue;
             ++differ;
             bool band = false;
             for (int dy = -1; dy <= 1; ++dy)
