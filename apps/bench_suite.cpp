@@ -71,13 +71,14 @@ int run_spsv_suite(const SuiteOptions& options) {
       {"width", options.width},
       {"height", options.height},
       {"frames", options.frames},
+      {"extrusion", to_string(options.extrusion)},
       {"goal", {{"pixels_processed", kGoalProcessed}, {"pixels_updated", kGoalUpdated}}},
       {"scenes", nlohmann::json::array()}};
   std::string csv =
       "scene,method,frame,tiles_processed,nonculled_tiles,pixels_processed,pixels_updated,"
       "count_ms\n";
   const RenderOptions render_options{options.width, options.height, Method::automatic,
-                                     Generator::automatic};
+                                     Generator::automatic, options.extrusion};
   bool all_met = true;
   std::FILE* table = options.json == "-" ? stderr : stdout;  // stdout may carry the JSON
   std::fprintf(table, "%-16s %-6s %12s %12s %14s %14s %10s\n", "scene", "method", "tiles",

@@ -8,6 +8,8 @@
 
 #include <string>
 
+#include "render/renderer.h"
+
 namespace shadowvol {
 
 struct SuiteOptions {
@@ -15,6 +17,8 @@ struct SuiteOptions {
   int width = 1024, height = 768;  // the paper's resolution
   std::string json;  // a file for the totals and per-frame series as JSON; "-" for stdout
   std::string csv;   // a file for one row per scene, method and frame
+  // Laine 2005 §7 extrudes every volume to the scene's extent, for all three methods alike.
+  Extrusion extrusion = Extrusion::bounded;
 };
 
 // Runs the suite, prints a table of totals and ratios against the goals, writes the files.

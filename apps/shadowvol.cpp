@@ -220,6 +220,7 @@ struct FrameArgs {
   std::string backend = "soft";
   std::string volumes = "cpu";
   std::string counts = "auto";
+  std::string extrusion = "infinite";
 };
 
 // `with_backend`: false for the viewer, which is OpenGL by nature.
@@ -233,6 +234,10 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_
                   "plane) or zp+db (z-pass with the ZP+ near-plane pre-fill)")
       ->capture_default_str();
   cmd->add_option("--generator", args.generator, "standard, robust, multiplicity or auto")
+      ->capture_default_str();
+  cmd->add_option("--extrusion", args.extrusion,
+                  "infinite (volumes to w = 0) or bounded (ended on a plane just beyond the "
+                  "scene, closed by dark caps: less to rasterize)")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   if (with_backend)
@@ -281,7 +286,9 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!generator) return make_error("--generator: " + generator.error().message);
   auto size = parse_size(args.size);
   if (!size) return size.error();
-  RenderOptions options{size->first, size->second, *method, *generator};
+  auto extrusion = parse_extrusion(args.extrusion);
+  if (!extrusion) return make_error("--extrusion: " + extrusion.error().message);
+  RenderOptions options{size->first, size->second, *method, *generator, *extrusion};
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   auto backend = parse_backend(args.backend);
   if (!backend) return make_error("--backend: " + backend.error().message);
@@ -663,6 +670,11 @@ int main(int argc, char** argv) {
         const RenderOptions sized{suite.width, suite.height, Method::automatic,
                                   Generator::automatic};
         if (auto ok = check_options(sized); !ok) return fail("--size: " + ok.error().message);
+      }
+      if (bench_cmd->get_option("--extrusion")->count() > 0) {
+        auto extrusion = parse_extrusion(bench_args.extrusion);
+        if (!extrusion) return fail("--extrusion: " + extrusion.error().message);
+        suite.extrusion = *extrusion;
       }
       return run_spsv_suite(suite);
     }

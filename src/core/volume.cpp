@@ -14,15 +14,11 @@
 namespace shadowvol {
 namespace {
 
-inline glm::vec4 at_infinity(const glm::vec3& p, const glm::vec4& light) {
-  return glm::vec4(light.w * p - glm::vec3(light), 0.0f);
-}
-
-inline void write_quad(const glm::vec3& u, const glm::vec3& v, const glm::vec4& light, int weight,
-                       PrimitiveSpan& out) {
+inline void write_quad(const glm::vec3& u, const glm::vec3& v, const glm::vec4& light,
+                       const glm::vec4& far_plane, int weight, PrimitiveSpan& out) {
   out.vertices[0] = glm::vec4(u, 1.0f);
-  out.vertices[1] = at_infinity(u, light);
-  out.vertices[2] = at_infinity(v, light);
+  out.vertices[1] = extrude(u, light, far_plane);
+  out.vertices[2] = extrude(v, light, far_plane);
   out.vertices[3] = glm::vec4(v, 1.0f);
   out.weights[0] = weight;
   out.vertices += kQuadCorners;
@@ -55,16 +51,22 @@ inline std::span<const std::uint32_t> irregular_refs(const Topology& topo, std::
 // (zero area, or edge-on) has an empty volume. standard: front faces cap the light side, the
 // others the dark side (closed meshes only; the dark cap of an edge-on face is a zero-area
 // triangle at infinity, of a zero-area face nothing, so those are left out). No dark caps for a
-// directional light: every vertex goes to the same point at infinity.
+// directional light extruded to infinity: every vertex goes to the same point at infinity.
 struct CapWeights {
   int light;
   int dark;
 };
-inline CapWeights cap_weights(const Topology& topo, bool standard, bool point_light, std::int8_t w,
+inline CapWeights cap_weights(const Topology& topo, bool standard, bool dark_caps, std::int8_t w,
                               std::size_t f) {
-  if (!standard) return {w, point_light ? -w : 0};
+  if (!standard) return {w, dark_caps ? -w : 0};
   const bool back = w == 0 && topo.face_planes[f] != glm::vec4(0.0f);
-  return {w, point_light && back ? 1 : 0};
+  return {w, dark_caps && back ? 1 : 0};
+}
+
+// Whether the far end of a volume needs closing: not where it is one point (a directional light
+// extruded to infinity).
+inline bool has_dark_caps(const glm::vec4& light, const glm::vec4& far_plane) {
+  return light.w != 0.0f || far_plane != kPlaneAtInfinity;
 }
 
 }  // namespace
@@ -123,6 +125,15 @@ Expected<void> check_generator(Generator requested, const TopologyReport& report
                     std::to_string(report.nonmanifold_edges) + " non-manifold and " +
                     std::to_string(report.inconsistent_edges) +
                     " inconsistently oriented edges; use robust, multiplicity or auto");
+}
+
+glm::vec4 extrude(const glm::vec3& p, const glm::vec4& light, const glm::vec4& far_plane) {
+  // p + t r on the plane: t = -(F . (p, 1)) / (n . r); scaled by n . r to stay homogeneous,
+  // which keeps the plane at infinity (n = 0, d = -1) exact: (r, 0).
+  const glm::vec3 r = light.w * p - glm::vec3(light);
+  const glm::vec3 n(far_plane);
+  const float along = glm::dot(n, r), before = glm::dot(n, p) + far_plane.w;
+  return glm::vec4(along * p - before * r, along);
 }
 
 namespace {
@@ -230,9 +241,9 @@ std::size_t find_casting_edges(const Topology& topo, Generator generator,
   return quads;
 }
 
-void write_sides(const Topology& topo, const glm::vec4& light, Generator generator,
-                 std::span<const std::int8_t> weights, std::span<const std::uint32_t> casting,
-                 PrimitiveSpan out) {
+void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
+                 Generator generator, std::span<const std::int8_t> weights,
+                 std::span<const std::uint32_t> casting, PrimitiveSpan out) {
   assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
   const bool robust = generator == Generator::robust;
   const std::int8_t* w = weights.data();
@@ -258,10 +269,10 @@ void write_sides(const Topology& topo, const glm::vec4& light, Generator generat
       const glm::vec3& u = positions[vertices[e][0]];
       const glm::vec3& v = positions[vertices[e][1]];
       if (!robust) {
-        write_quad(u, v, light, w0 - w1, out);
+        write_quad(u, v, light, far_plane, w0 - w1, out);
       } else {
-        if (w0 != 0) write_quad(u, v, light, w0, out);
-        if (w1 != 0) write_quad(u, v, light, -w1, out);
+        if (w0 != 0) write_quad(u, v, light, far_plane, w0, out);
+        if (w1 != 0) write_quad(u, v, light, far_plane, -w1, out);
       }
       continue;
     }
@@ -271,34 +282,36 @@ void write_sides(const Topology& topo, const glm::vec4& light, Generator generat
     int multiplicity = 0;
     for (std::uint32_t ref : irregular_refs(topo, i)) {
       const int term = edge_term(w, ref);
-      if (robust && term != 0) write_quad(u, v, light, term, out);
+      if (robust && term != 0) write_quad(u, v, light, far_plane, term, out);
       multiplicity += term;
     }
-    if (!robust) write_quad(u, v, light, multiplicity, out);
+    if (!robust) write_quad(u, v, light, far_plane, multiplicity, out);
   }
 }
 
-CapCount count_caps(const Topology& topo, const glm::vec4& light, Generator generator,
-                    std::span<const std::int8_t> weights, IndexRange faces) {
+CapCount count_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
+                    Generator generator, std::span<const std::int8_t> weights, IndexRange faces) {
   assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
-  const bool standard = generator == Generator::standard, point_light = light.w != 0.0f;
+  const bool standard = generator == Generator::standard;
+  const bool dark_caps = has_dark_caps(light, far_plane);
   CapCount count;
   for (std::size_t f = faces.begin; f < faces.end; ++f) {
-    const CapWeights c = cap_weights(topo, standard, point_light, weights[f], f);
+    const CapWeights c = cap_weights(topo, standard, dark_caps, weights[f], f);
     count.light += c.light != 0;
     count.dark += c.dark != 0;
   }
   return count;
 }
 
-void write_caps(const Topology& topo, const glm::vec4& light, Generator generator,
-                std::span<const std::int8_t> weights, IndexRange faces, PrimitiveSpan light_caps,
-                PrimitiveSpan dark_caps) {
+void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
+                Generator generator, std::span<const std::int8_t> weights, IndexRange faces,
+                PrimitiveSpan light_caps, PrimitiveSpan dark_caps) {
   assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
-  const bool standard = generator == Generator::standard, point_light = light.w != 0.0f;
+  const bool standard = generator == Generator::standard;
+  const bool closed_far = has_dark_caps(light, far_plane);
   const std::uint32_t* fv = topo.face_vertices.data();
   for (std::size_t f = faces.begin; f < faces.end; ++f) {
-    const CapWeights c = cap_weights(topo, standard, point_light, weights[f], f);
+    const CapWeights c = cap_weights(topo, standard, closed_far, weights[f], f);
     if (c.light == 0 && c.dark == 0) continue;
     const glm::vec3& a = topo.positions[fv[3 * f]];
     const glm::vec3& b = topo.positions[fv[3 * f + 1]];
@@ -307,8 +320,8 @@ void write_caps(const Topology& topo, const glm::vec4& light, Generator generato
       write_triangle(glm::vec4(a, 1.0f), glm::vec4(b, 1.0f), glm::vec4(d, 1.0f), c.light,
                      light_caps);
     if (c.dark != 0)
-      write_triangle(at_infinity(a, light), at_infinity(b, light), at_infinity(d, light), c.dark,
-                     dark_caps);
+      write_triangle(extrude(a, light, far_plane), extrude(b, light, far_plane),
+                     extrude(d, light, far_plane), c.dark, dark_caps);
   }
 }
 
@@ -321,12 +334,13 @@ void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOpti
   scratch.casting.clear();
   const std::size_t quads =
       find_casting_edges(topo, generator, scratch.weights, {0, topo.edge_count()}, scratch.casting);
-  write_sides(topo, light, generator, scratch.weights, scratch.casting,
+  write_sides(topo, light, options.far_plane, generator, scratch.weights, scratch.casting,
               out.sides.grow(quads, kQuadCorners));
   if (!options.caps) return;
   const IndexRange all_faces{0, topo.face_count()};
-  const CapCount caps = count_caps(topo, light, generator, scratch.weights, all_faces);
-  write_caps(topo, light, generator, scratch.weights, all_faces,
+  const CapCount caps =
+      count_caps(topo, light, options.far_plane, generator, scratch.weights, all_faces);
+  write_caps(topo, light, options.far_plane, generator, scratch.weights, all_faces,
              out.light_caps.grow(caps.light, kTriangleCorners),
              out.dark_caps.grow(caps.dark, kTriangleCorners));
 }

@@ -29,8 +29,12 @@
 // side), as in the GPU Gems 3 listing 11-1. A weight w on a primitive means "this primitive,
 // drawn w times" (w < 0: drawn |w| times with the opposite winding).
 //
-// Spaces: everything is in the mesh's own space; pass the light in that space too (the inverse
-// model matrix times the world light). Vertices at infinity have w = 0. A caller that maps the
+// Where a volume ends: extruded to infinity (w = 0) by default, or ended on a finite far plane
+// (see kPlaneAtInfinity), the same volume cut where no receiver lies.
+//
+// Spaces: everything is in the mesh's own space; pass the light and the far plane in that space
+// too (the inverse model matrix times the world light; the transpose of the model matrix times
+// the world plane). Vertices at infinity have w = 0. A caller that maps the
 // volume by a transform with negative determinant must negate every weight, since the
 // transform reverses every primitive's winding.
 //
@@ -67,6 +71,20 @@ Generator resolve_generator(Generator requested, const TopologyReport& report);
 // `source` and the offending counts. Any other generator is accepted for any mesh.
 Expected<void> check_generator(Generator requested, const TopologyReport& report,
                                std::string_view source);
+
+// The far plane F = (n, d) of a volume: every extrusion ends where it meets F, and the volume is
+// the infinite one cut by the half-space n.x + d <= 0 (the kept side), closed there by dark caps.
+// Points on the kept side are in the cut volume exactly when they are in the infinite one, so a
+// far plane beyond every receiver changes no shadow and leaves less to rasterize (Laine 2005 §7
+// extrudes to the scene's extent). The default, the plane at infinity (0, 0, 0, -1), keeps every
+// finite point and gives the classic volume. Precondition for a finite F, which the caller
+// ensures from the caster's bounds: every caster vertex p lies on the kept side, and its ray
+// away from the light meets F ahead (n . r > 0, r = light.w * p - light.xyz).
+inline const glm::vec4 kPlaneAtInfinity{0.0f, 0.0f, 0.0f, -1.0f};
+
+// Where the ray from p away from the light meets the far plane, in homogeneous form (w = n . r;
+// w = 0 for the plane at infinity). Positive scaling keeps every primitive's winding.
+glm::vec4 extrude(const glm::vec3& p, const glm::vec4& light, const glm::vec4& far_plane);
 
 // Refuses what is not a light: a non-finite coordinate, w other than 1 (point) or 0
 // (directional), or a directional light without a direction.
@@ -121,15 +139,16 @@ struct PrimitiveList {
 // The caller owns it and reuses it from frame to frame: clear() keeps the capacity, so a frame
 // that emits no more than an earlier one allocates nothing.
 struct VolumeBuffer {
-  // Side quads (u, u_inf, v_inf, v): the edge u->v extruded away from the light, u and v with
-  // w = 1, their extrusions with w = 0. Split into triangles by kQuadTriangles.
+  // Side quads (u, u_far, v_far, v): the edge u->v extruded away from the light, u and v with
+  // w = 1, their extrusions on the far plane (w = 0 at infinity). Split into triangles by
+  // kQuadTriangles.
   PrimitiveList sides;
   // Light caps: the caster triangles themselves, in their own vertex order (the order the depth
   // pass draws them, so that they rasterize to exactly the surface's depth); a cap facing away
   // from the light gets a negative weight instead of a reversed order.
   PrimitiveList light_caps;
-  // Dark caps: caster triangles projected to infinity (w = 0), own vertex order, signed weight.
-  // Empty for directional lights: every vertex projects to the same point at infinity.
+  // Dark caps: caster triangles projected onto the far plane, own vertex order, signed weight.
+  // Empty for directional lights extruded to infinity: every vertex projects to the same point.
   PrimitiveList dark_caps;
 
   void clear() {
@@ -178,9 +197,9 @@ std::size_t find_casting_edges(const Topology& topo, Generator generator,
                                std::vector<std::uint32_t>& casting);
 // write_sides writes the quads of `casting`, in order, to `out` (room for the count
 // find_casting_edges returned).
-void write_sides(const Topology& topo, const glm::vec4& light, Generator generator,
-                 std::span<const std::int8_t> weights, std::span<const std::uint32_t> casting,
-                 PrimitiveSpan out);
+void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
+                 Generator generator, std::span<const std::int8_t> weights,
+                 std::span<const std::uint32_t> casting, PrimitiveSpan out);
 
 // Caps in two steps likewise: count_caps says how many light and dark caps the faces in
 // `faces` have, write_caps writes them in face order.
@@ -188,15 +207,16 @@ struct CapCount {
   std::size_t light = 0;
   std::size_t dark = 0;
 };
-CapCount count_caps(const Topology& topo, const glm::vec4& light, Generator generator,
-                    std::span<const std::int8_t> weights, IndexRange faces);
-void write_caps(const Topology& topo, const glm::vec4& light, Generator generator,
-                std::span<const std::int8_t> weights, IndexRange faces, PrimitiveSpan light_caps,
-                PrimitiveSpan dark_caps);
+CapCount count_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
+                    Generator generator, std::span<const std::int8_t> weights, IndexRange faces);
+void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
+                Generator generator, std::span<const std::int8_t> weights, IndexRange faces,
+                PrimitiveSpan light_caps, PrimitiveSpan dark_caps);
 
 struct VolumeOptions {
   Generator generator = Generator::automatic;
   bool caps = true;  // only z-fail needs caps; z-pass draws the sides alone
+  glm::vec4 far_plane = kPlaneAtInfinity;
 };
 
 // Per-frame scratch memory of build_volume, owned by the caller and reused between frames.

@@ -135,7 +135,8 @@ void GlRenderer::MeshBuffers::build_adjacency() {
   adjacency_indices = make_buffer();
   adjacency_vao = make_vertex_array();
   glNamedBufferStorage(adjacency_positions.get(),
-                       static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(), 0);
+                       static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(),
+                       0);
   glNamedBufferStorage(adjacency_indices.get(),
                        static_cast<GLsizeiptr>(adjacency.size() * sizeof(std::uint32_t)),
                        adjacency.data(), 0);
@@ -187,16 +188,17 @@ void GlRenderer::VolumeUpload::upload(const VolumeBuffer& volume, bool caps) {
   groups.clear();
   unit_weights = true;
   for (auto& [weight, vertices] : by_weight) {
-    groups.push_back({weight, static_cast<GLint>(all.size()), static_cast<GLsizei>(vertices.size())});
+    groups.push_back(
+        {weight, static_cast<GLint>(all.size()), static_cast<GLsizei>(vertices.size())});
     all.insert(all.end(), vertices.begin(), vertices.end());
     unit_weights = unit_weights && (weight == 1 || weight == -1);
   }
   vertices = static_cast<GLsizei>(all.size());
   buffer = make_buffer();  // storage is immutable: a new buffer per upload
-  glNamedBufferStorage(buffer.get(),
-                       static_cast<GLsizeiptr>(std::max<std::size_t>(all.size(), 1) *
-                                               sizeof(VolumeVertex)),
-                       all.empty() ? nullptr : all.data(), 0);
+  glNamedBufferStorage(
+      buffer.get(),
+      static_cast<GLsizeiptr>(std::max<std::size_t>(all.size(), 1) * sizeof(VolumeVertex)),
+      all.empty() ? nullptr : all.data(), 0);
   glVertexArrayVertexBuffer(vao.get(), 0, buffer.get(), 0, sizeof(VolumeVertex));
   glVertexArrayAttribFormat(vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribIFormat(vao.get(), 1, 1, GL_INT, offsetof(VolumeVertex, weight));
@@ -259,8 +261,12 @@ Expected<std::unique_ptr<GlRenderer>> GlRenderer::create(GlSettings settings,
     std::initializer_list<ShaderSource> sources;
   };
   const Build builds[] = {
-      {&r->surface_depth_[0], "depth", {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kDepthFragment}}},
-      {&r->surface_lit_[0], "lit", {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kLitFragment}}},
+      {&r->surface_depth_[0],
+       "depth",
+       {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kDepthFragment}}},
+      {&r->surface_lit_[0],
+       "lit",
+       {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kLitFragment}}},
       {&r->surface_depth_[1],
        "depth through a geometry shader",
        {{GL_VERTEX_SHADER, kSurfaceVertex},
@@ -271,13 +277,17 @@ Expected<std::unique_ptr<GlRenderer>> GlRenderer::create(GlSettings settings,
        {{GL_VERTEX_SHADER, kSurfaceVertex},
         {GL_GEOMETRY_SHADER, kSurfaceGeometry},
         {GL_FRAGMENT_SHADER, kLitFragment}}},
-      {&r->volume_cpu_, "cpu volumes", {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, kCountFragment}}},
+      {&r->volume_cpu_,
+       "cpu volumes",
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, kCountFragment}}},
       {&r->volume_gpu_,
        "gpu volumes",
        {{GL_VERTEX_SHADER, kPassVertex},
         {GL_GEOMETRY_SHADER, kVolumeGeometry},
         {GL_FRAGMENT_SHADER, kCountFragment}}},
-      {&r->resolve_, "resolve", {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveFragment}}},
+      {&r->resolve_,
+       "resolve",
+       {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveFragment}}},
   };
   for (const Build& b : builds) {
     auto program = link_program(b.name, b.sources);
@@ -313,14 +323,15 @@ GlRenderer::MeshBuffers& GlRenderer::mesh_buffers(const SceneObject& object) {
       normals[f] = glm::vec4(len > 0.0 ? glm::vec3(n / len) : glm::vec3(0.0f), 0.0f);
     }
     glNamedBufferStorage(m.positions.get(),
-                         static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(), 0);
+                         static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(),
+                         0);
     glNamedBufferStorage(m.indices.get(),
                          static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
                          mesh.indices.data(), 0);
-    glNamedBufferStorage(m.normals.get(),
-                         static_cast<GLsizeiptr>(std::max<std::size_t>(normals.size(), 1) *
-                                                 sizeof(glm::vec4)),
-                         normals.data(), 0);
+    glNamedBufferStorage(
+        m.normals.get(),
+        static_cast<GLsizeiptr>(std::max<std::size_t>(normals.size(), 1) * sizeof(glm::vec4)),
+        normals.data(), 0);
     glVertexArrayVertexBuffer(m.vao.get(), 0, m.positions.get(), 0, sizeof(glm::vec4));
     glVertexArrayAttribFormat(m.vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(m.vao.get(), 0, 0);
@@ -338,9 +349,8 @@ Frame GlRenderer::render(const Scene& scene, const RenderOptions& options) {
 
 FrameStats GlRenderer::present(const Scene& scene, const RenderOptions& options) {
   Frame frame = draw(scene, options, false);
-  glBlitNamedFramebuffer(targets_->resolved.get(), 0, 0, 0,
-                         options.width, options.height, 0, 0, options.width, options.height,
-                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBlitNamedFramebuffer(targets_->resolved.get(), 0, 0, 0, options.width, options.height, 0, 0,
+                         options.width, options.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   return frame.stats;
 }
 
@@ -500,19 +510,21 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
         } else {
           for (const VolumeUpload::Group& g : up.groups) {
             count_state(rule, g.weight > 0 ? mirror : -mirror);
-            for (int k = 0; k < std::abs(g.weight); ++k) glDrawArrays(GL_TRIANGLES, g.first, g.count);
+            for (int k = 0; k < std::abs(g.weight); ++k)
+              glDrawArrays(GL_TRIANGLES, g.first, g.count);
           }
         }
         continue;
       }
       const SceneObject& object = scene.objects[o];
       const glm::vec4 object_light = object_space_light(object, scene.lights[l].position);
-      const bool robust = resolve_generator(options.generator, object.topology->report) !=
-                          Generator::standard;
+      const bool robust =
+          resolve_generator(options.generator, object.topology->report) != Generator::standard;
       MeshBuffers& m = *meshes[o];
       if (!m.adjacency_vao) m.build_adjacency();
       glBindVertexArray(m.adjacency_vao.get());
       glUniform4fv(glsl::kLight, 1, glm::value_ptr(object_light));
+      glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(plan.object_far_plane(l, o)));
       glUniform1i(glsl::kRobust, robust);
       glUniform1i(glsl::kCaps, rule == Rule::zfail);
       auto draw_emit = [&](int emit, int sign) {
@@ -545,8 +557,8 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
       } else {
         std::vector<std::uint8_t> stencil(pixels);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, t.scene.get());
-        glReadnPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE,
-                      static_cast<GLsizei>(pixels), stencil.data());
+        glReadnPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels),
+                      stencil.data());
         flip_rows(stencil, w, h, mask, [](std::uint8_t c) -> std::uint8_t { return c != 0; });
       }
       stats.ms_readback += ms_since(start);

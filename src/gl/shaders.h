@@ -16,7 +16,8 @@ namespace shadowvol::gl::glsl {
 inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLight = 4,
                      kRobust = 5, kCaps = 6, kEmit = 7, kAlbedo = 8, kRadiance = 9,
                      kCountTexture = 10, kFirstId = 11, kAmbient = 12, kSpecular = 13,
-                     kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17;
+                     kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
+                     kFarPlane = 18;
 
 // What the volume geometry shader emits in one draw (uniform kEmit).
 inline constexpr int kEmitPositive = 0;  // every primitive of weight +1 (stencil, first draw)
@@ -138,6 +139,7 @@ layout(location = 4) uniform vec4 light;  // object space
 layout(location = 5) uniform bool robust;  // false: standard, front faces only
 layout(location = 6) uniform bool caps;    // z-fail
 layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted
+layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity
 flat out int primitive_weight;
 invariant gl_Position;
 
@@ -153,7 +155,12 @@ int facing(vec4 a, vec4 b, vec4 c) {
   return 0;
 }
 
-vec4 at_infinity(vec4 p) { return vec4(light.w * p.xyz - light.xyz, 0.0); }
+// Where the ray from p away from the light meets the far plane (core/volume.h, extrude).
+vec4 extrude(vec4 p) {
+  vec3 r = light.w * p.xyz - light.xyz;
+  float along = dot(far_plane.xyz, r), before = dot(far_plane.xyz, p.xyz) + far_plane.w;
+  return vec4(along * p.xyz - before * r, along);
+}
 
 // A vertex of the mesh (index i of the input), with the vertex shader's clip position.
 void emit_vertex(int i, int weight) {
@@ -161,10 +168,10 @@ void emit_vertex(int i, int weight) {
   gl_Position = gl_in[i].gl_Position;
   EmitVertex();
 }
-// The extrusion to infinity of vertex i.
-void emit_infinite(int i, int weight) {
+// The extrusion of vertex i onto the far plane.
+void emit_far(int i, int weight) {
   primitive_weight = weight;
-  gl_Position = to_clip(at_infinity(object_position[i]));
+  gl_Position = to_clip(extrude(object_position[i]));
   EmitVertex();
 }
 
@@ -184,13 +191,13 @@ void main() {
       EndPrimitive();
     }
     // The dark cap, weight -f: reversed where a draw takes only weight +1. (A directional
-    // light's dark caps collapse to a point: none.)
-    if (emit != 1 && light.w != 0.0) {
+    // light's dark caps at infinity collapse to a point: none.)
+    if (emit != 1 && (light.w != 0.0 || far_plane != vec4(0.0, 0.0, 0.0, -1.0))) {
       bool reverse = emit == 0 && f > 0;
       int weight = emit == 0 ? 1 : -f;
-      emit_infinite(0, weight);
-      emit_infinite(reverse ? 4 : 2, weight);
-      emit_infinite(reverse ? 2 : 4, weight);
+      emit_far(0, weight);
+      emit_far(reverse ? 4 : 2, weight);
+      emit_far(reverse ? 2 : 4, weight);
       EndPrimitive();
     }
   }
@@ -200,13 +207,13 @@ void main() {
     // Open, non-manifold and inconsistently wound edges have no neighbour (w = 0): every face
     // on them casts its own side. Otherwise a side where the two faces' facings differ.
     if (p[neighbour].w != 0.0 && facing(p[a], p[neighbour], p[b]) == f) continue;
-    // The side quad (a, a_inf, b_inf, b) of weight f, as a strip a, a_inf, b, b_inf.
+    // The side quad (a, a_far, b_far, b) of weight f, as a strip a, a_far, b, b_far.
     if (emit == 0 && f < 0) { int t = a; a = b; b = t; }
     int weight = emit == 0 ? 1 : f;
     emit_vertex(a, weight);
-    emit_infinite(a, weight);
+    emit_far(a, weight);
     emit_vertex(b, weight);
-    emit_infinite(b, weight);
+    emit_far(b, weight);
     EndPrimitive();
   }
 }

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
-#include <glm/matrix.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "render/near_plane_prefill.h"
 
@@ -55,23 +55,39 @@ glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light);
 // Degenerate (zero) when the light lies on the line p1 p2: z-fail everywhere, still exact.
 glm::vec4 point_point_light(const glm::vec3& p1, const glm::vec3& p2, const glm::vec4& light) {
   const glm::dvec3 a(p1), b(p2);
-  const glm::dvec3 normal =
-      light.w != 0.0f ? glm::cross(a - glm::dvec3(light) / double(light.w),
-                                   b - glm::dvec3(light) / double(light.w))
-                      : glm::cross(b - a, glm::dvec3(light));
+  const glm::dvec3 normal = light.w != 0.0f ? glm::cross(a - glm::dvec3(light) / double(light.w),
+                                                         b - glm::dvec3(light) / double(light.w))
+                                            : glm::cross(b - a, glm::dvec3(light));
   return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, a)));
 }
 
-// An object's long axis: the principal direction of its vertices (power iteration on their
-// covariance, in double), its ends where the vertices' projections end, and whether the object
-// is at least twice as long as it is wide (as far across as its farthest vertex from the axis).
-struct Axis {
+// An object's principal axes, from the covariance of its vertices (in double): the long axis
+// (the principal direction, by power iteration), its ends where the vertices' projections end,
+// and whether the object is at least twice as long as it is wide (as far across as its farthest
+// vertex from the axis); the thin axis (the least principal direction, by power iteration on
+// trace - covariance, whose largest eigenvalue is the trace minus the least), the interval of
+// the vertices' projections on it, and whether the object is flat: a hundred times thinner along
+// it than long.
+struct Shape {
   glm::vec3 p1{0.0f}, p2{0.0f};
   bool elongated = false;
+  glm::dvec3 thin_axis{0.0};
+  double thin_lo = 0.0, thin_hi = 0.0;
+  bool flat = false;
 };
-Axis long_axis(const std::vector<glm::vec3>& points) {
-  Axis axis;
-  if (points.empty()) return axis;
+glm::dvec3 principal_direction(const glm::dmat3& m) {
+  glm::dvec3 dir(0.577, 0.578, 0.579);
+  for (int i = 0; i < 64; ++i) {
+    const glm::dvec3 next = m * dir;
+    const double len = glm::length(next);
+    if (!(len > 0.0)) return glm::dvec3(0.0);
+    dir = next / len;
+  }
+  return dir;
+}
+Shape shape_of(const std::vector<glm::vec3>& points) {
+  Shape shape;
+  if (points.empty()) return shape;
   glm::dvec3 mean(0.0);
   for (const glm::vec3& p : points) mean += glm::dvec3(p);
   mean /= double(points.size());
@@ -80,33 +96,85 @@ Axis long_axis(const std::vector<glm::vec3>& points) {
     const glm::dvec3 d = glm::dvec3(p) - mean;
     covariance += glm::outerProduct(d, d);
   }
-  glm::dvec3 dir(0.577, 0.578, 0.579);
-  for (int i = 0; i < 64; ++i) {
-    const glm::dvec3 next = covariance * dir;
-    const double len = glm::length(next);
-    if (!(len > 0.0)) return axis;  // all points coincide
-    dir = next / len;
-  }
+  const glm::dvec3 dir = principal_direction(covariance);
+  if (dir == glm::dvec3(0.0)) return shape;  // all points coincide
+  const double trace = covariance[0][0] + covariance[1][1] + covariance[2][2];
+  const glm::dvec3 thin = principal_direction(glm::dmat3(trace) - covariance);
   double lo = INFINITY, hi = -INFINITY, width = 0.0;
+  shape.thin_lo = INFINITY, shape.thin_hi = -INFINITY;
   for (const glm::vec3& p : points) {
     const glm::dvec3 d = glm::dvec3(p) - mean;
     const double t = glm::dot(d, dir);
     lo = std::min(lo, t);
     hi = std::max(hi, t);
     width = std::max(width, 2.0 * glm::length(d - t * dir));
+    shape.thin_lo = std::min(shape.thin_lo, glm::dot(glm::dvec3(p), thin));
+    shape.thin_hi = std::max(shape.thin_hi, glm::dot(glm::dvec3(p), thin));
   }
-  axis.p1 = glm::vec3(mean + lo * dir);
-  axis.p2 = glm::vec3(mean + hi * dir);
-  axis.elongated = hi - lo >= 2.0 * width;
-  return axis;
+  shape.p1 = glm::vec3(mean + lo * dir);
+  shape.p2 = glm::vec3(mean + hi * dir);
+  shape.elongated = hi - lo >= 2.0 * width;
+  shape.thin_axis = thin;
+  shape.flat = thin != glm::dvec3(0.0) && shape.thin_hi - shape.thin_lo <= 0.01 * (hi - lo);
+  return shape;
+}
+
+// Ours, for a flat object: the plane across its thin axis, just past the object on the side away
+// from the light (by a hundredth of its length), so that the object lies on the light's side and
+// its whole volume on the other: pixels on the object take the rule that culls the volume. None
+// where the light lies within the object's thickness (edge-on), or a directional light shines
+// along the object.
+std::optional<glm::vec4> flat_plane(const Shape& shape, const glm::vec4& light) {
+  const glm::dvec3 n = shape.thin_axis;
+  const double length = glm::length(glm::dvec3(shape.p2) - glm::dvec3(shape.p1));
+  const double margin = 0.01 * length;
+  double light_side = glm::dot(n, glm::dvec3(light));  // directional: + where it shines from
+  if (light.w != 0.0f) {
+    const double at = light_side / double(light.w);
+    light_side = at > shape.thin_hi ? 1.0 : at < shape.thin_lo ? -1.0 : 0.0;
+  }
+  if (light_side > 0.0) return glm::vec4(glm::vec3(n), float(-(shape.thin_lo - margin)));
+  if (light_side < 0.0) return glm::vec4(glm::vec3(n), float(-(shape.thin_hi + margin)));
+  return std::nullopt;
 }
 
 glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light) {
   const glm::dvec3 centre(p);
-  const glm::dvec3 along = light.w != 0.0f ? centre - glm::dvec3(light) / double(light.w)
-                                           : -glm::dvec3(light);
+  const glm::dvec3 along =
+      light.w != 0.0f ? centre - glm::dvec3(light) / double(light.w) : -glm::dvec3(light);
   const glm::dvec3 normal = glm::cross(glm::cross(-centre, along), along);
   return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, centre)));
+}
+
+// The far plane that ends an object's bounded volume (core/volume.h, Extrusion::bounded),
+// eye-relative: facing away from the light along the line from the light through the object's
+// box centre (along a directional light's rays), a little beyond the farthest corner of `reach`
+// (the scene's box and the near-plane rectangle, so that every receiver and the pre-fill's near
+// plane lie on its kept side). The plane at infinity where a point light is among the object's
+// box corners, seen from it within 84 degrees of that line for none or not all of them: rays
+// that graze the plane would be extruded to huge coordinates.
+glm::vec4 bounded_far_plane(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& reach_lo,
+                            const glm::vec3& reach_hi, const glm::vec4& light) {
+  const glm::dvec3 centre = (glm::dvec3(lo) + glm::dvec3(hi)) * 0.5;
+  const bool point = light.w != 0.0f;
+  const glm::dvec3 l = glm::dvec3(light) / (point ? double(light.w) : 1.0);
+  glm::dvec3 n = point ? centre - l : -l;
+  if (!(glm::length(n) > 0.0)) return kPlaneAtInfinity;
+  n = glm::normalize(n);
+  auto corner = [](const glm::vec3& a, const glm::vec3& b, int i) {
+    return glm::dvec3(i & 1 ? b.x : a.x, i & 2 ? b.y : a.y, i & 4 ? b.z : a.z);
+  };
+  constexpr double kMinCosine = 0.1;
+  for (int i = 0; i < 8 && point; ++i) {
+    const glm::dvec3 r = corner(lo, hi, i) - l;
+    if (!(glm::dot(n, r) >= kMinCosine * glm::length(r)) || glm::length(r) == 0.0)
+      return kPlaneAtInfinity;
+  }
+  double farthest = -INFINITY;
+  for (int i = 0; i < 8; ++i)
+    farthest = std::max(farthest, glm::dot(n, corner(reach_lo, reach_hi, i)));
+  const double margin = 1e-2 * glm::length(glm::dvec3(reach_hi) - glm::dvec3(reach_lo)) + 1e-3;
+  return glm::vec4(glm::vec3(n), float(-(farthest + margin)));
 }
 
 // Draws the segment a-b (clip space, w >= 0 allowed at one end) over the image, blended: clipped
@@ -133,6 +201,12 @@ void overlay_segment(Image& img, glm::vec4 a, glm::vec4 b, const glm::vec3& colo
 }
 
 }  // namespace
+
+glm::vec4 FramePlan::object_far_plane(std::size_t l, std::size_t o) const {
+  // Planes map from the eye-relative world to the object by the transpose of its model matrix.
+  if (far_plane[l][o] == kPlaneAtInfinity) return kPlaneAtInfinity;
+  return glm::vec4(glm::transpose(glm::dmat4(model[o])) * glm::dvec4(far_plane[l][o]));
+}
 
 std::pair<std::int32_t, std::uint32_t> FramePlan::object_of(std::uint32_t id) const {
   if (id >= first_id.back()) return {-1, 0};
@@ -170,15 +244,20 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     near_rect[i] = glm::vec3(c) / c.w;
   }
   struct Bounds {
-    glm::vec3 centre;  // of the bounding box
+    glm::vec3 lo, hi;  // the bounding box
+    glm::vec3 centre;  // of the box
     float radius;      // of the sphere about it
-    Axis axis;
+    Shape shape;
   };
   std::vector<Bounds> bounds(objects);
   const bool per_object = options.method == Method::automatic ||
                           options.method == Method::split_plane ||
                           options.method == Method::zpass_prefill;
-  if (per_object)
+  const bool bounded = options.extrusion == Extrusion::bounded;
+  glm::vec3 reach_lo(INFINITY), reach_hi(-INFINITY);  // the scene and the near plane
+  for (const glm::vec3& c : near_rect)
+    reach_lo = glm::min(reach_lo, c), reach_hi = glm::max(reach_hi, c);
+  if (per_object || bounded)
     for (std::size_t o = 0; o < objects; ++o) {
       glm::vec3 lo(INFINITY), hi(-INFINITY);
       std::vector<glm::vec3> points;
@@ -188,8 +267,16 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
         hi = glm::max(hi, q);
         if (options.method == Method::split_plane) points.push_back(q);
       }
-      bounds[o] = {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, long_axis(points)};
+      bounds[o] = {lo, hi, (lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, shape_of(points)};
+      reach_lo = glm::min(reach_lo, lo);
+      reach_hi = glm::max(reach_hi, hi);
     }
+  plan.far_plane.assign(scene.lights.size(), std::vector<glm::vec4>(objects, kPlaneAtInfinity));
+  for (std::size_t l = 0; l < scene.lights.size() && bounded; ++l)
+    for (std::size_t o = 0; o < objects; ++o)
+      if (bounds[o].lo.x <= bounds[o].hi.x)  // an object with vertices
+        plan.far_plane[l][o] =
+            bounded_far_plane(bounds[o].lo, bounds[o].hi, reach_lo, reach_hi, plan.lights[l]);
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
   plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
   plan.prefill.assign(scene.lights.size(), std::vector<bool>(objects));
@@ -209,12 +296,18 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
       plan.prefill[l][o] = reaches_near && can_prefill;
       if (options.method == Method::split_plane && !zfail) {
         const SplitPlaneChoice choice = scene.objects[o].split_plane;
-        const Axis& axis = bounds[o].axis;
-        const bool ppl = choice == SplitPlaneChoice::point_point_light ||
-                         (choice == SplitPlaneChoice::automatic && axis.elongated);
-        plan.split[l][o] =
-            plane_to_clip * (ppl ? point_point_light(axis.p1, axis.p2, plan.lights[l])
-                                 : point_camera_light(bounds[o].centre, plan.lights[l]));
+        const Shape& shape = bounds[o].shape;
+        const bool automatic = choice == SplitPlaneChoice::automatic;
+        std::optional<glm::vec4> plane;  // world, eye-relative
+        if (choice == SplitPlaneChoice::flat || (automatic && shape.flat))
+          plane = flat_plane(shape, plan.lights[l]);  // none edge-on: then as below
+        if (!plane) {
+          const bool ppl =
+              choice == SplitPlaneChoice::point_point_light || (automatic && shape.elongated);
+          plane = ppl ? point_point_light(shape.p1, shape.p2, plan.lights[l])
+                      : point_camera_light(bounds[o].centre, plan.lights[l]);
+        }
+        plan.split[l][o] = plane_to_clip * *plane;
       }
       (zfail              ? stats.objects_zfail
        : plan.split[l][o] ? stats.objects_split
@@ -229,8 +322,8 @@ glm::vec4 object_space_light(const SceneObject& object, const glm::vec4& light) 
   return glm::vec4(glm::inverse(glm::dmat4(object.transform)) * glm::dvec4(light));
 }
 
-std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
-                                      std::size_t light, Generator generator, FrameStats& stats) {
+std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan, std::size_t light,
+                                      Generator generator, FrameStats& stats) {
   if (cache_.size() < scene.lights.size()) cache_.resize(scene.lights.size());
   std::vector<Entry>& cache = cache_[light];
   cache.resize(scene.objects.size());
@@ -239,10 +332,12 @@ std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
     const glm::vec4 object_light = object_space_light(object, scene.lights[light].position);
-    const VolumeOptions options{generator, plan.builds_caps(light, o)};
+    const VolumeOptions options{generator, plan.builds_caps(light, o),
+                                plan.object_far_plane(light, o)};
     Entry& c = cache[o];
     if (c.topology == object.topology && c.light == object_light &&
-        c.options.generator == options.generator && c.options.caps == options.caps) {
+        c.options.generator == options.generator && c.options.caps == options.caps &&
+        c.options.far_plane == options.far_plane) {
       ++stats.volumes_reused;
       continue;
     }

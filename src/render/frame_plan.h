@@ -26,7 +26,7 @@
 namespace shadowvol {
 
 struct FramePlan {
-  glm::mat4 view_proj{1.0f};      // of eye-relative space
+  glm::mat4 view_proj{1.0f};  // of eye-relative space
   glm::mat4 inv_view_proj{1.0f};
   std::vector<glm::mat4> model;   // per object: its transform, eye-relative (DESIGN.md "Numerics")
   std::vector<int> weight_sign;   // per object: -1 where the transform mirrors (volume.h)
@@ -42,6 +42,10 @@ struct FramePlan {
   // under Method::zpass_prefill, and in a split plane's z-pass tiles, where the volume may
   // reach the near plane.
   std::vector<std::vector<bool>> prefill;
+  // [light][object]: the far plane the volume ends on, eye-relative (core/volume.h): under
+  // Extrusion::bounded, a plane beyond the scene and the near plane; else, and where no plane
+  // can end it well, the plane at infinity.
+  std::vector<std::vector<glm::vec4>> far_plane;
 
   // Whether the volume of object o for light l counts its caps: z-fail does, and so do a split
   // plane's z-fail tiles. The volume is built with caps also where the pre-fill projects them.
@@ -51,6 +55,9 @@ struct FramePlan {
   bool builds_caps(std::size_t l, std::size_t o) const {
     return counts_caps(l, o) || prefill[l][o];
   }
+
+  // far_plane[l][o] in the object's own space, where its volume is built.
+  glm::vec4 object_far_plane(std::size_t l, std::size_t o) const;
 
   // (object, face) of a depth-pass id, or object -1 when the id is past the last face.
   std::pair<std::int32_t, std::uint32_t> object_of(std::uint32_t id) const;

@@ -23,10 +23,18 @@ std::string_view to_string(Method method) {
 }
 
 Expected<Method> parse_method(std::string_view name) {
-  return parse_name(name,
-                    {Method::zpass, Method::zfail, Method::automatic, Method::split_plane,
-                     Method::zpass_prefill},
-                    "method");
+  return parse_name(
+      name,
+      {Method::zpass, Method::zfail, Method::automatic, Method::split_plane, Method::zpass_prefill},
+      "method");
+}
+
+std::string_view to_string(Extrusion extrusion) {
+  return extrusion == Extrusion::infinite ? "infinite" : "bounded";
+}
+
+Expected<Extrusion> parse_extrusion(std::string_view name) {
+  return parse_name(name, {Extrusion::infinite, Extrusion::bounded}, "extrusion");
 }
 
 Expected<void> check_options(const RenderOptions& options) {

@@ -40,11 +40,20 @@ inline bool soft_only(Method method) {
   return method == Method::split_plane || method == Method::zpass_prefill;
 }
 
+// How far volumes reach: to infinity (w = 0, with an infinite far plane or depth clamp; GPU Gems
+// 3 §11.3.2), or bounded, ended on a plane just beyond the scene's bounds and closed by dark caps
+// there (Laine 2005 §7 extrudes to the scene's extent). Bounded volumes cover less of the screen,
+// give z-fail a far depth bound, and are exact wherever a receiver can be.
+enum class Extrusion : std::uint8_t { infinite, bounded };
+std::string_view to_string(Extrusion extrusion);
+Expected<Extrusion> parse_extrusion(std::string_view name);
+
 struct RenderOptions {
   int width = 960;
   int height = 540;
   Method method = Method::automatic;
   Generator generator = Generator::automatic;
+  Extrusion extrusion = Extrusion::infinite;
   // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
   // one colour per light, so that a person can see the volumes.
   bool show_volumes = false;
@@ -60,9 +69,9 @@ struct Image {
 
 struct FrameStats {
   double ms_depth = 0, ms_volumes = 0, ms_counts = 0, ms_shade = 0;
-  double ms_readback = 0;  // gl: copying ids, masks and the image to memory (soft: none)
-  std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
-  std::size_t volume_primitives = 0;          // over all lights
+  double ms_readback = 0;             // gl: copying ids, masks and the image to memory (soft: none)
+  std::size_t triangles = 0;          // scene triangles drawn in the depth pass
+  std::size_t volume_primitives = 0;  // over all lights
   int objects_zpass = 0, objects_zfail = 0;   // over all lights
   int objects_split = 0;                      // over all lights: drawn by a split plane
   std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for

@@ -96,11 +96,18 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
         clip_volume(v.light_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
         clip_volume(v.dark_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
       }
-      // Depth bounds: up to the volume's nearest window depth (a triangle's depth is affine on
-      // the screen, so its range is its vertices'; one before the near plane reaches depth 1).
-      soft::DepthBounds bounds{0.0f, 0.0f};
-      for (const glm::vec4& c : tris)
-        bounds.zmax = std::max(bounds.zmax, c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w);
+      // Depth bounds: the volume's range of window depths (a triangle's depth is affine on the
+      // screen, so its range is its vertices'; one before the near plane stands for the point
+      // where the triangle crosses it, at depth 1). Bounded volumes end short of depth 0.
+      soft::DepthBounds bounds{1.0f, 0.0f};
+      for (const glm::vec4& c : tris) {
+        const float depth = c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w;
+        bounds.zmin = std::min(bounds.zmin, depth);
+        bounds.zmax = std::max(bounds.zmax, depth);
+      }
+      // Pre-filled z-pass starts inside the volume: a pixel beyond all of it must still count
+      // its way out, so no far bound.
+      if (plan.prefill[l][o]) bounds.zmin = 0.0f;
       const std::span<const glm::vec4> all_tris(tris);
       const std::span<const std::int32_t> all_weights(weights);
       if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count

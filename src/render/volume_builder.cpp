@@ -53,8 +53,9 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
         scratch.quads[c] = find_casting_edges(topo, generator, scratch.weights,
                                               chunk_range(c, edges), scratch.casting[c]);
       } else {
-        scratch.caps[c - edge_chunks] = count_caps(topo, job.light, generator, scratch.weights,
-                                                   chunk_range(c - edge_chunks, faces));
+        scratch.caps[c - edge_chunks] =
+            count_caps(topo, job.light, job.options.far_plane, generator, scratch.weights,
+                       chunk_range(c - edge_chunks, faces));
       }
     });
 
@@ -75,15 +76,16 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
       if (c < edge_chunks) {
         std::size_t before = 0;
         for (std::size_t k = 0; k < c; ++k) before += scratch.quads[k];
-        write_sides(topo, job.light, generator, scratch.weights, scratch.casting[c],
-                    advance(sides_at, before, kQuadCorners));
+        write_sides(topo, job.light, job.options.far_plane, generator, scratch.weights,
+                    scratch.casting[c], advance(sides_at, before, kQuadCorners));
       } else {
         CapCount before;
         for (std::size_t k = 0; k < c - edge_chunks; ++k) {
           before.light += scratch.caps[k].light;
           before.dark += scratch.caps[k].dark;
         }
-        write_caps(topo, job.light, generator, scratch.weights, chunk_range(c - edge_chunks, faces),
+        write_caps(topo, job.light, job.options.far_plane, generator, scratch.weights,
+                   chunk_range(c - edge_chunks, faces),
                    advance(light_at, before.light, kTriangleCorners),
                    advance(dark_at, before.dark, kTriangleCorners));
       }

@@ -57,6 +57,8 @@ std::string_view to_string(SplitPlaneChoice choice) {
       return "pcl";
     case SplitPlaneChoice::point_point_light:
       return "ppl";
+    case SplitPlaneChoice::flat:
+      return "flat";
   }
   return "unknown";
 }
@@ -64,7 +66,7 @@ std::string_view to_string(SplitPlaneChoice choice) {
 Expected<SplitPlaneChoice> parse_split_plane_choice(std::string_view name) {
   return parse_name(name,
                     {SplitPlaneChoice::automatic, SplitPlaneChoice::point_camera_light,
-                     SplitPlaneChoice::point_point_light},
+                     SplitPlaneChoice::point_point_light, SplitPlaneChoice::flat},
                     "split plane");
 }
 

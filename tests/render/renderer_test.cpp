@@ -113,7 +113,7 @@ TEST(Renderer, SplitPlanesRunAlongLongThinObjects) {
   EXPECT_GT(side(pcl, end1), 0.05);  // it turns to face the camera instead
   EXPECT_EQ(parse_split_plane_choice("ppl").value(), SplitPlaneChoice::point_point_light);
   EXPECT_EQ(parse_split_plane_choice("pp").error().message,
-            "unknown split plane 'pp': expected auto, pcl or ppl");
+            "unknown split plane 'pp': expected auto, pcl, ppl or flat");
 }
 
 TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
