@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "image_file.h"
+#include "plot.h"
 #include "render/soft_renderer.h"
 #include "scene/scene.h"
 
@@ -19,10 +21,12 @@ constexpr std::string_view kScenes[] = {"knight", "knights16", "tree", "tree-dec
 struct SuiteMethod {
   const char* name;
   Method method;
+  glm::vec3 color;  // in --plot
 };
 // zf+db is the software backend's z-fail, which has depth bounds.
-constexpr SuiteMethod kMethods[] = {
-    {"zp+db", Method::zpass_prefill}, {"zf+db", Method::zfail}, {"spsv", Method::split_plane}};
+const SuiteMethod kMethods[] = {{"zp+db", Method::zpass_prefill, {0.85f, 0.33f, 0.10f}},
+                                {"zf+db", Method::zfail, {0.13f, 0.40f, 0.75f}},
+                                {"spsv", Method::split_plane, {0.10f, 0.60f, 0.25f}}};
 // Laine 2005 Table 1: the smallest factors by which the baselines exceed spsv (the goal) and
 // the largest (what we aim past), for pixels processed and pixels updated.
 constexpr double kGoalProcessed = 1.87, kGoalUpdated = 2.07;
@@ -41,6 +45,16 @@ struct Series {
     count_ms.push_back(s.ms_counts);
   }
 };
+
+// The counters of Table 1, by title, as --plot draws them.
+struct Counter {
+  const char* title;
+  std::vector<std::uint64_t> Series::*values;
+};
+const Counter kCounters[] = {{"tiles processed", &Series::tiles_processed},
+                             {"non-culled tiles", &Series::nonculled_tiles},
+                             {"pixels processed", &Series::pixels_processed},
+                             {"pixels updated", &Series::pixels_updated}};
 
 template <class T>
 T total(const std::vector<T>& v) {
@@ -80,6 +94,12 @@ int run_spsv_suite(const SuiteOptions& options) {
   const RenderOptions render_options{options.width, options.height, Method::automatic,
                                      Generator::automatic, options.extrusion};
   bool all_met = true;
+  Chart chart{"split-plane shadow volumes (Laine 2005): counters per frame, " +
+                  std::to_string(options.width) + "x" + std::to_string(options.height) + ", " +
+                  std::string(to_string(options.extrusion)) + " extrusion",
+              "frame",
+              static_cast<int>(std::size(kCounters)),
+              {}};
   std::FILE* table = options.json == "-" ? stderr : stdout;  // stdout may carry the JSON
   std::fprintf(table, "%-16s %-6s %12s %12s %14s %14s %10s\n", "scene", "method", "tiles",
                "non-culled", "px processed", "px updated", "count ms");
@@ -131,6 +151,15 @@ int run_spsv_suite(const SuiteOptions& options) {
       }
       results.emplace_back(m.name, std::move(series));
     }
+    for (const Counter& counter : kCounters) {
+      PlotPanel panel{scene.name + ": " + counter.title, {}};
+      for (std::size_t i = 0; i < results.size(); ++i) {
+        const std::vector<std::uint64_t>& values = results[i].second.*counter.values;
+        panel.series.push_back({results[i].first, kMethods[i].color,
+                                std::vector<double>(values.begin(), values.end())});
+      }
+      chart.panels.push_back(std::move(panel));
+    }
     // Each baseline over spsv, against the goal.
     nlohmann::json ratios = nlohmann::json::object();
     for (const auto& [name, series] : results) {
@@ -164,6 +193,13 @@ int run_spsv_suite(const SuiteOptions& options) {
   if (!options.csv.empty() && !write_text(options.csv, csv)) {
     std::cerr << "shadowvol: error: " << options.csv << ": cannot write the CSV\n";
     return 1;
+  }
+  if (!options.plot.empty()) {
+    if (auto ok = write_png(options.plot, draw_chart(chart)); !ok) {
+      std::cerr << "shadowvol: error: " << ok.error().message << "\n";
+      return 1;
+    }
+    std::fprintf(table, "wrote %s (the counters per frame)\n", options.plot.c_str());
   }
   return 0;
 }

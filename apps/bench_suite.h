@@ -17,6 +17,7 @@ struct SuiteOptions {
   int width = 1024, height = 768;  // the paper's resolution
   std::string json;  // a file for the totals and per-frame series as JSON; "-" for stdout
   std::string csv;   // a file for one row per scene, method and frame
+  std::string plot;  // a PNG of every counter's per-frame series, per scene and method
   // Laine 2005 §7 extrudes every volume to the scene's extent, for all three methods alike.
   Extrusion extrusion = Extrusion::bounded;
 };

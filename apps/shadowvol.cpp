@@ -16,13 +16,12 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench_suite.h"
 #include "core/topology.h"
 #include "core/volume.h"
 #include "gl/backend.h"
-#include "image_file.h"
-#include "view.h"
 #include "gl/context.h"
-#include "bench_suite.h"
+#include "image_file.h"
 #include "render/heatmap.h"
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
@@ -30,7 +29,7 @@
 #include "scene/scene_io.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
-
+#include "view.h"
 
 #ifndef SHADOWVOL_VERSION
 #error "SHADOWVOL_VERSION is set by CMake"
@@ -333,8 +332,8 @@ int render(const RenderArgs& args) {
   options.show_volumes = args.show_volumes;
   options.tile_work = !args.heatmap.empty();
   if (options.tile_work)
-    if (auto ok = take_soft_backend(resolved->backend,
-                                    "--heatmap maps the software rasterizer's tiles");
+    if (auto ok =
+            take_soft_backend(resolved->backend, "--heatmap maps the software rasterizer's tiles");
         !ok)
       return fail(ok.error().message);
   if (args.frames < 1)
@@ -357,9 +356,10 @@ int render(const RenderArgs& args) {
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
     if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
-    std::printf("wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
-                "per pixel)\n",
-                args.heatmap.c_str(), map.passes_at_top);
+    std::printf(
+        "wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
+        "per pixel)\n",
+        args.heatmap.c_str(), map.passes_at_top);
   }
   if (args.stats) {
     const FrameStats& s = frame.stats;
@@ -372,13 +372,14 @@ int render(const RenderArgs& args) {
         s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
         s.volumes_built, s.volumes_reused);
     if ((*renderer)->backend() == "soft")
-    std::printf(
-        "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
-        "or depth bounds,"
-        " %llu pixels processed, %llu count updates\n",
-        (unsigned long long)s.counts.triangles_in, (unsigned long long)s.counts.triangles_clipped,
-        (unsigned long long)s.counts.tiles_touched, (unsigned long long)s.counts.tiles_skipped,
-        (unsigned long long)s.counts.pixels_processed, (unsigned long long)s.counts.count_updates);
+      std::printf(
+          "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
+          "or depth bounds,"
+          " %llu pixels processed, %llu count updates\n",
+          (unsigned long long)s.counts.triangles_in, (unsigned long long)s.counts.triangles_clipped,
+          (unsigned long long)s.counts.tiles_touched, (unsigned long long)s.counts.tiles_skipped,
+          (unsigned long long)s.counts.pixels_processed,
+          (unsigned long long)s.counts.count_updates);
   }
   return 0;
 }
@@ -487,19 +488,19 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
     status.clear();
     const double n = frames;
     nlohmann::json row{{"scene", resolved->scene.name},
-                             {"backend", std::string(renderer->backend())},
-                             {"width", options.width},
-                             {"height", options.height},
-                             {"method", std::string(to_string(options.method))},
-                             {"volumes", args.volumes},
-                             {"frames", frames},
-                             {"frame_ms", wall / n},
-                             {"depth_ms", sum.ms_depth / n},
-                             {"volumes_ms", sum.ms_volumes / n},
-                             {"counts_ms", sum.ms_counts / n},
-                             {"shade_ms", sum.ms_shade / n},
-                             {"readback_ms", sum.ms_readback / n},
-                             {"volume_primitives", sum.volume_primitives / frames}};
+                       {"backend", std::string(renderer->backend())},
+                       {"width", options.width},
+                       {"height", options.height},
+                       {"method", std::string(to_string(options.method))},
+                       {"volumes", args.volumes},
+                       {"frames", frames},
+                       {"frame_ms", wall / n},
+                       {"depth_ms", sum.ms_depth / n},
+                       {"volumes_ms", sum.ms_volumes / n},
+                       {"counts_ms", sum.ms_counts / n},
+                       {"shade_ms", sum.ms_shade / n},
+                       {"readback_ms", sum.ms_readback / n},
+                       {"volume_primitives", sum.volume_primitives / frames}};
     if (renderer->backend() == "soft") {  // the rasterizer's work, per frame (gl has no counters)
       const soft::Counters& c = sum.counts;
       row["count_pass"] = {{"triangles", c.triangles_in / frames},
@@ -579,8 +580,7 @@ int main(int argc, char** argv) {
   std::string scene_list;
   for (std::string_view n : builtin_scene_names())
     scene_list += (scene_list.empty() ? "" : ", ") + std::string(n);
-  CLI::App* render_cmd = app.add_subcommand(
-      "render", "Render a scene with exact shadows to a PNG");
+  CLI::App* render_cmd = app.add_subcommand("render", "Render a scene with exact shadows to a PNG");
   add_frame_options(render_cmd, render_args.frame, scene_list);
   render_cmd->add_option("--out", render_args.out, "PNG file to write")->capture_default_str();
   render_cmd->add_flag("--stats", render_args.stats, "Print the frame's timings and counters");
@@ -630,7 +630,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench_cmd->add_option("--frames", bench_frames, "Frames to time per scene, after one warm-up")
       ->capture_default_str();
-  std::string bench_json_file, bench_suite, bench_csv;
+  std::string bench_json_file, bench_suite, bench_csv, bench_plot;
   CLI::Option* json_opt =
       bench_cmd
           ->add_option("--json", bench_json_file,
@@ -643,6 +643,9 @@ int main(int argc, char** argv) {
                         "and spsv; 1024x768 unless --size)");
   bench_cmd->add_option("--csv", bench_csv,
                         "With --suite: write one row per scene, method and frame to this file");
+  bench_cmd->add_option("--plot", bench_plot,
+                        "With --suite: draw every counter's per-frame series, per scene and "
+                        "method, to this PNG");
 
   bool info_json = false;
   CLI::App* info_cmd = app.add_subcommand(
@@ -657,11 +660,12 @@ int main(int argc, char** argv) {
   if (info_cmd->parsed()) return info(info_json);
   if (view_cmd->parsed()) return view(view_args, view_frames, view_screenshot);
   if (bench_cmd->parsed()) {
-    if (!bench_suite.empty() || !bench_csv.empty()) {
-      if (bench_suite.empty()) return fail("--csv needs --suite spsv");
+    if (!bench_suite.empty() || !bench_csv.empty() || !bench_plot.empty()) {
+      if (bench_suite.empty())
+        return fail(std::string(bench_csv.empty() ? "--plot" : "--csv") + " needs --suite spsv");
       if (bench_suite != "spsv")
         return fail("--suite: unknown suite '" + bench_suite + "': expected spsv");
-      SuiteOptions suite{bench_frames, 1024, 768, bench_json_file, bench_csv};
+      SuiteOptions suite{bench_frames, 1024, 768, bench_json_file, bench_csv, bench_plot};
       if (json_opt->count() > 0 && bench_json_file.empty()) suite.json = "-";
       if (bench_cmd->get_option("--size")->count() > 0) {
         auto size = parse_size(bench_args.size);
