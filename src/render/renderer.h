@@ -60,6 +60,9 @@ struct RenderOptions {
   // Software backend: record the count passes' work per 8x8 tile into Frame::tile_work (for
   // `render --heatmap`); the gl backend records none.
   bool tile_work = false;
+  // With tile_work: also each object's volume's share, into Frame::object_tile_work (for the
+  // suite's per-tile oracle, `bench --suite spsv`).
+  bool tile_work_per_object = false;
 };
 
 struct Image {
@@ -90,6 +93,8 @@ struct Frame {
   // RenderOptions::tile_work, software backend: per 8x8 tile (soft::kTileSize), row-major, the
   // count passes' work over all lights; else empty.
   std::vector<soft::TileWork> tile_work;
+  // RenderOptions::tile_work_per_object: per object, per tile, its volume's part of tile_work.
+  std::vector<std::vector<soft::TileWork>> object_tile_work;
 };
 
 // Checks an options struct a person filled in: size within the rasterizer's limits.

@@ -75,6 +75,13 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
 
   // --- per light: volumes, counts ---
   frame.shadowed.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
+  // Per object, the tile work moves out of the target after each volume, into the object's
+  // share and the frame's total; that bookkeeping is left out of the count passes' time.
+  const bool per_object = options.tile_work && options.tile_work_per_object;
+  std::vector<soft::TileWork> total_work(per_object ? target_.tile_work.size() : 0);
+  if (per_object)
+    frame.object_tile_work.assign(scene.objects.size(),
+                                  std::vector<soft::TileWork>(target_.tile_work.size()));
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     start = Clock::now();
     volumes_.update(scene, plan, l, options.generator, stats);
@@ -113,12 +120,12 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
       if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
         prefill_tris.clear();
         prefill_weights.clear();
-        append_near_plane_prefill(v.light_caps, plan.model[o], plan.weight_sign[o],
-                                  plan.lights[l], plan.view_proj, prefill_tris, prefill_weights);
+        append_near_plane_prefill(v.light_caps, plan.model[o], plan.weight_sign[o], plan.lights[l],
+                                  plan.view_proj, prefill_tris, prefill_weights);
         soft::draw_counts(target_, prefill_tris, prefill_weights, soft::CountRule::prefill,
-                          stats.counts, {}, {split.value_or(glm::vec4(0.0f)),
-                                             split ? soft::SplitTiles::zpass_only
-                                                   : soft::SplitTiles::all});
+                          stats.counts, {},
+                          {split.value_or(glm::vec4(0.0f)),
+                           split ? soft::SplitTiles::zpass_only : soft::SplitTiles::all});
       }
       if (split) {
         // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
@@ -132,11 +139,23 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
                           plan.zfail[l][o] ? soft::CountRule::zfail : soft::CountRule::zpass,
                           stats.counts, bounds);
       }
+      if (per_object) {
+        const auto bookkeeping = Clock::now();
+        for (std::size_t t = 0; t < total_work.size(); ++t) {
+          soft::TileWork& work = target_.tile_work[t];
+          for (soft::TileWork* sum : {&frame.object_tile_work[o][t], &total_work[t]}) {
+            sum->pixels_processed += work.pixels_processed;
+            sum->pixels_updated += work.pixels_updated;
+          }
+          work = {};
+        }
+        start += Clock::now() - bookkeeping;
+      }
     }
     target_.take_nonzero_counts(frame.shadowed[l]);
     stats.ms_counts += ms_since(start);
   }
-  frame.tile_work = std::move(target_.tile_work);  // the next frame sizes it afresh
+  frame.tile_work = std::move(per_object ? total_work : target_.tile_work);  // sized afresh
 
   // --- shading: ambient everywhere, each light where it is not shadowed ---
   start = Clock::now();
