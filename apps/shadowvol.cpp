@@ -352,7 +352,9 @@ int render(const RenderArgs& args) {
   const Image& img = frame.image;
   if (auto ok = write_png(args.out, img); !ok) return fail(ok.error().message);
   std::cout << "wrote " << args.out << " (" << scene.name << ", " << img.width << "x" << img.height
-            << ", " << to_string(options.method) << ", " << (*renderer)->backend() << ")\n";
+            << ", " << to_string(options.method)
+            << (options.extrusion == Extrusion::bounded ? " (bounded)" : "") << ", "
+            << (*renderer)->backend() << ")\n";
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
     if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
@@ -416,6 +418,7 @@ int verify(const VerifyArgs& args) {
     std::cout << nlohmann::json{{"scene", scene.name},
                                 {"method", std::string(to_string(options.method))},
                                 {"generator", std::string(to_string(options.generator))},
+                                {"extrusion", std::string(to_string(options.extrusion))},
                                 {"backend", backend},
                                 {"frame", args.frame_number},
                                 {"width", options.width},
@@ -427,10 +430,11 @@ int verify(const VerifyArgs& args) {
               << "\n";
   } else {
     std::printf(
-        "%s, %s, %s backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
+        "%s, %s%s, %s backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
         "one-pixel band: %s\n",
-        scene.name.c_str(), std::string(to_string(options.method)).c_str(), backend.c_str(),
-        options.width, options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band,
+        scene.name.c_str(), std::string(to_string(options.method)).c_str(),
+        options.extrusion == Extrusion::bounded ? " (bounded)" : "", backend.c_str(), options.width,
+        options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band,
         c.mismatched_outside_band == 0 ? "matches the reference" : "DIFFERS from the reference");
   }
   return c.mismatched_outside_band == 0 ? 0 : 1;
@@ -492,6 +496,7 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
                        {"width", options.width},
                        {"height", options.height},
                        {"method", std::string(to_string(options.method))},
+                       {"extrusion", std::string(to_string(options.extrusion))},
                        {"volumes", args.volumes},
                        {"frames", frames},
                        {"frame_ms", wall / n},
