@@ -227,8 +227,8 @@ Scene knight() {
   Scene s;
   s.name = "knight";
   add_ground(s, 5.0f);
-  s.objects.push_back(make_object("knight", make_knight(), place({0.0f, 0.0f, 0.0f}, 20.0f),
-                                  {0.7f, 0.72f, 0.78f}));
+  s.objects.push_back(
+      make_object("knight", make_knight(), place({0.0f, 0.0f, 0.0f}, 20.0f), {0.7f, 0.72f, 0.78f}));
   s.objects.back().animation = {{0.0f, 1.0f, 0.0f}, 2.0f, glm::vec3(0.0f)};
   s.lights.push_back(kCirclingLight);
   s.camera = {{0.5f, 2.2f, 4.2f}, {0.0f, 1.0f, 0.0f}};
@@ -244,8 +244,11 @@ Scene knights16() {
   for (int i = 0; i < 16; ++i) {
     const float x = 1.6f * static_cast<float>(i % 4) - 2.4f,
                 z = 1.6f * static_cast<float>(i / 4) - 2.4f;
-    SceneObject knight{"knight" + std::to_string(i), shared, topology,
-                       place({x, 0.0f, z}, 37.0f * static_cast<float>(i)), {{0.7f, 0.72f, 0.78f}},
+    SceneObject knight{"knight" + std::to_string(i),
+                       shared,
+                       topology,
+                       place({x, 0.0f, z}, 37.0f * static_cast<float>(i)),
+                       {{0.7f, 0.72f, 0.78f}},
                        {}};
     knight.animation = {{0.0f, 1.0f, 0.0f}, i % 2 ? 2.0f : -2.0f, glm::vec3(0.0f)};
     s.objects.push_back(std::move(knight));

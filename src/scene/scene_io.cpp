@@ -214,7 +214,9 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < root["objects"].size(); ++i) {
     const json& o = root["objects"][i];
     const std::string p = "scene.objects[" + std::to_string(i) + "]";
-    if (!r.keys(o, p, {"name", "mesh", "shape", "transform", "color", "animation", "split_plane"}))
+    if (!r.keys(o, p,
+                {"name", "mesh", "shape", "transform", "color", "animation", "split_plane",
+                 "decompose"}))
       return make_error(r.error);
     if (o.contains("mesh") == o.contains("shape"))
       return make_error(name + ": " + p +
@@ -271,9 +273,26 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
       if (!choice) return make_error(name + ": " + p + ".split_plane: " + choice.error().message);
       split_plane = *choice;
     }
-    scene.objects.push_back(make_object(object_name, std::move(mesh), transform, color));
-    scene.objects.back().animation = animation;
-    scene.objects.back().split_plane = split_plane;
+    bool decompose = false;
+    if (o.contains("decompose")) {
+      if (!o["decompose"].is_boolean())
+        return make_error(name + ": " + p + ".decompose: expected true or false");
+      decompose = o["decompose"].get<bool>();
+    }
+    // Decomposed (Laine 2005 §6): each connected part an object of its own, with its own split
+    // plane; vertices at equal positions join, since mesh files often repeat them per face.
+    std::vector<Mesh> parts;
+    if (decompose)
+      parts = connected_parts(mesh, true);
+    else
+      parts.push_back(std::move(mesh));
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const std::string part_name =
+          parts.size() > 1 ? object_name + "/" + std::to_string(k + 1) : object_name;
+      scene.objects.push_back(make_object(part_name, std::move(parts[k]), transform, color));
+      scene.objects.back().animation = animation;
+      scene.objects.back().split_plane = split_plane;
+    }
   }
   return scene;
 }

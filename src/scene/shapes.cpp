@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <tuple>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -82,7 +83,7 @@ Mesh make_tube(glm::vec3 a, glm::vec3 b, float ra, float rb, int sides) {
   for (int i = 0; i < sides; ++i) {
     const std::uint32_t a0 = ring(0, i), a1 = ring(0, i + 1), b0 = ring(1, i), b1 = ring(1, i + 1);
     m.indices.insert(m.indices.end(), {a0, a1, b1, a0, b1, b0});  // sides, outward
-    m.indices.insert(m.indices.end(), {0, a1, a0, 1, b0, b1});     // end caps, facing -w and +w
+    m.indices.insert(m.indices.end(), {0, a1, a0, 1, b0, b1});    // end caps, facing -w and +w
   }
   return m;
 }
@@ -120,13 +121,24 @@ void append_mesh(Mesh& mesh, const Mesh& part) {
   for (const std::uint32_t i : part.indices) mesh.indices.push_back(offset + i);
 }
 
-std::vector<Mesh> connected_parts(const Mesh& mesh) {
+std::vector<Mesh> connected_parts(const Mesh& mesh, bool join_equal_positions) {
   std::vector<std::uint32_t> parent(mesh.positions.size());
   for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
   const auto root = [&](std::uint32_t i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
+  if (join_equal_positions) {  // sorted by position, equal neighbours join
+    std::vector<std::uint32_t> order(parent);
+    const auto key = [&](std::uint32_t i) {
+      const glm::vec3& p = mesh.positions[i];
+      return std::tuple(p.x, p.y, p.z);
+    };
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    for (std::size_t k = 1; k < order.size(); ++k)
+      if (key(order[k]) == key(order[k - 1])) parent[root(order[k])] = root(order[k - 1]);
+  }
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
     for (int k = 1; k < 3; ++k) parent[root(mesh.indices[3 * t + k])] = root(mesh.indices[3 * t]);
   std::vector<Mesh> parts;
@@ -154,15 +166,15 @@ std::vector<Mesh> connected_parts(const Mesh& mesh) {
 Mesh make_knight() {
   Mesh m;
   for (const float side : {-1.0f, 1.0f}) {
-    append_mesh(m, make_tube({0.15f * side, 0.0f, 0.02f}, {0.13f * side, 0.92f, 0.0f}, 0.09f,
-                             0.12f, 12));                                         // leg
-    append_mesh(m, make_sphere({0.33f * side, 1.47f, 0.0f}, 0.14f, 8, 12));       // shoulder
+    append_mesh(m, make_tube({0.15f * side, 0.0f, 0.02f}, {0.13f * side, 0.92f, 0.0f}, 0.09f, 0.12f,
+                             12));                                           // leg
+    append_mesh(m, make_sphere({0.33f * side, 1.47f, 0.0f}, 0.14f, 8, 12));  // shoulder
   }
-  append_mesh(m, make_tube({0.0f, 0.85f, 0.0f}, {0.0f, 1.52f, 0.0f}, 0.27f, 0.31f, 16));  // torso
+  append_mesh(m, make_tube({0.0f, 0.85f, 0.0f}, {0.0f, 1.52f, 0.0f}, 0.27f, 0.31f, 16));    // torso
   append_mesh(m, make_tube({0.38f, 1.42f, 0.0f}, {0.46f, 0.98f, 0.2f}, 0.08f, 0.07f, 10));  // arm
   append_mesh(m, make_tube({-0.38f, 1.42f, 0.0f}, {-0.5f, 1.05f, 0.12f}, 0.08f, 0.07f, 10));
-  append_mesh(m, make_sphere({0.0f, 1.74f, 0.0f}, 0.17f, 10, 14));                 // head
-  append_mesh(m, make_box({-0.03f, 1.8f, -0.18f}, {0.03f, 1.98f, 0.14f}));         // crest
+  append_mesh(m, make_sphere({0.0f, 1.74f, 0.0f}, 0.17f, 10, 14));          // head
+  append_mesh(m, make_box({-0.03f, 1.8f, -0.18f}, {0.03f, 1.98f, 0.14f}));  // crest
   append_mesh(m,
               make_tube({0.46f, 0.95f, 0.22f}, {0.5f, 1.95f, 0.75f}, 0.035f, 0.02f, 6));   // sword
   append_mesh(m, make_tube({0.3f, 1.04f, 0.3f}, {0.62f, 0.88f, 0.16f}, 0.03f, 0.03f, 6));  // guard

@@ -42,9 +42,10 @@ Mesh make_sphere(glm::vec3 centre, float radius, int rings, int segments);
 // Appends `part` to `mesh`, its indices moved past mesh's vertices.
 void append_mesh(Mesh& mesh, const Mesh& part);
 
-// The connected components of a mesh (triangles that share a vertex index, transitively), each
-// as a mesh of its own, in the order of their first triangles.
-std::vector<Mesh> connected_parts(const Mesh& mesh);
+// The connected components of a mesh (triangles that share a vertex index, transitively; with
+// `join_equal_positions`, also vertices at exactly the same position, for files that repeat a
+// vertex per face), each as a mesh of its own, in the order of their first triangles.
+std::vector<Mesh> connected_parts(const Mesh& mesh, bool join_equal_positions = false);
 
 // A standing armoured figure about 2 units tall, feet on y = 0, facing +z: legs, torso, arms,
 // shoulders, head and crest, a sword and a shield, each a closed part (some overlapping), about

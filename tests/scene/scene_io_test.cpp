@@ -45,6 +45,44 @@ TEST(SceneFile, AnimationSpinsMovesAndOrbits) {
   EXPECT_EQ(scene_at_frame(*scene, 0).objects[0].transform, scene->objects[0].transform);
 }
 
+// "decompose": each connected part its own object (Laine 2005 §6), vertices that a file repeats
+// per face joined by position: two faces written with six vertices are one part.
+TEST(SceneFile, DecomposeMakesAnObjectPerConnectedPart) {
+  const auto obj = std::filesystem::temp_directory_path() / "shadowvol_test_parts.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                        "v 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                        "v 5 0 0\nv 6 0 0\nv 5 1 0\n"
+                        "f 1 2 3\nf 4 5 6\nf 7 8 9\n";
+  const std::string scene_json = R"({
+    "camera": {"position": [0, 2, 5], "target": [0, 0, 0]},
+    "lights": [{"position": [4, 5, 0]}],
+    "objects": [{"name": "pair", "mesh": ")" +
+                                 obj.string() + R"(", "decompose": DECOMPOSE,
+                 "split_plane": "ppl"}]})";
+  const auto with = [&](const std::string& value) {
+    std::string text = scene_json;
+    text.replace(text.find("DECOMPOSE"), 9, value);
+    return load_scene_file(write_temp("decompose_" + value, text));
+  };
+  auto whole = with("false");
+  ASSERT_TRUE(whole.ok()) << whole.error().message;
+  ASSERT_EQ(whole->objects.size(), 1u);
+  EXPECT_EQ(whole->objects[0].name, "pair");
+  auto parts = with("true");
+  ASSERT_TRUE(parts.ok()) << parts.error().message;
+  ASSERT_EQ(parts->objects.size(), 2u);
+  EXPECT_EQ(parts->objects[0].name, "pair/1");
+  EXPECT_EQ(parts->objects[0].mesh->triangle_count(), 2u);
+  EXPECT_EQ(parts->objects[1].name, "pair/2");
+  EXPECT_EQ(parts->objects[1].mesh->triangle_count(), 1u);
+  EXPECT_EQ(parts->objects[1].split_plane, SplitPlaneChoice::point_point_light);
+  auto bad = with("\"yes\"");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("objects[0].decompose: expected true or false"),
+            std::string::npos)
+      << bad.error().message;
+}
+
 struct Bad {
   const char* name;
   const char* json;
