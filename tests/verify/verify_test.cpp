@@ -35,8 +35,8 @@ struct Variant {
 const Variant kSoft{"soft", Backend::soft, {}};
 const Variant kGlCpu{"gl_cpu", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::automatic}};
 const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarget::automatic}};
-const Variant kGlAdditive{"gl_additive", Backend::gl,
-                          {gl::VolumePath::cpu, gl::CountTarget::additive}};
+const Variant kGlAdditive{
+    "gl_additive", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::additive}};
 const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlAdditive};
 void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 }  // namespace
@@ -112,13 +112,13 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Volumes ended on a far plane beyond the scene (Extrusion::bounded), by every method and
 // backend (the additive target counts what the stencil does: no need of it here).
-INSTANTIATE_TEST_SUITE_P(
-    Bounded, BuiltinScenes,
-    ::testing::Combine(::testing::ValuesIn(kSceneNames),
-                       ::testing::Values(Method::zpass, Method::zfail, Method::automatic),
-                       ::testing::Values(kSoft, kGlCpu, kGlGpu),
-                       ::testing::Values(Extrusion::bounded)),
-    scene_method_name);
+INSTANTIATE_TEST_SUITE_P(Bounded, BuiltinScenes,
+                         ::testing::Combine(::testing::ValuesIn(kSceneNames),
+                                            ::testing::Values(Method::zpass, Method::zfail,
+                                                              Method::automatic),
+                                            ::testing::Values(kSoft, kGlCpu, kGlGpu),
+                                            ::testing::Values(Extrusion::bounded)),
+                         scene_method_name);
 INSTANTIATE_TEST_SUITE_P(
     BoundedSoftOnly, BuiltinScenes,
     ::testing::Combine(::testing::ValuesIn(kSceneNames),
@@ -233,6 +233,8 @@ TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
     for (Method m : {Method::zpass, Method::zfail, Method::automatic})
       EXPECT_EQ(verify(*scene, m, Generator::automatic, v).mismatched_outside_band, 0u)
           << v.name << " " << to_string(m);
+  for (Method m : {Method::split_plane, Method::zpass_prefill})
+    EXPECT_EQ(verify(*scene, m).mismatched_outside_band, 0u) << to_string(m);
 }
 
 // Geo-referenced data sits 1e5-1e6 units from the origin, where float steps are centimetres:
@@ -255,6 +257,11 @@ TEST(SceneFiles, FarFromTheOriginStillMatchesTheReference) {
         EXPECT_EQ(c.mismatched_outside_band, 0u)
             << v.name << " " << distance << " " << to_string(m);
       }
+    for (Method m : {Method::zfail, Method::split_plane})  // far planes placed eye-relative too
+      EXPECT_EQ(
+          verify(far, m, Generator::automatic, kSoft, Extrusion::bounded).mismatched_outside_band,
+          0u)
+          << distance << " bounded " << to_string(m);
   }
 }
 
@@ -270,6 +277,13 @@ TEST_P(RealMeshes, OnTheirDefaultStageMatchTheReference) {
       const Comparison c = verify(scene, m, Generator::automatic, v);
       EXPECT_GT(c.pixels_compared, 1000u);
       EXPECT_EQ(c.mismatched_outside_band, 0u) << v.name << " " << to_string(m);
+    }
+  // The software backend's own methods, with volumes to infinity and bounded.
+  for (Extrusion e : {Extrusion::infinite, Extrusion::bounded})
+    for (Method m : {Method::split_plane, Method::zpass_prefill}) {
+      const Comparison c = verify(scene, m, Generator::automatic, kSoft, e);
+      EXPECT_GT(c.pixels_compared, 1000u);
+      EXPECT_EQ(c.mismatched_outside_band, 0u) << to_string(m) << " " << to_string(e);
     }
 }
 
@@ -300,9 +314,9 @@ TEST(Compare, ShadowsThinnerThanAPixelAreBoundaries) {
       make_object("ground", make_ground(5.0f), glm::mat4(1.0f), glm::vec3(0.8f)));
   const glm::mat4 rod_transform =
       glm::rotate(glm::translate(glm::mat4(1.0f), {0.0f, 1.5f, 1.2f}), 0.3f, {0.0f, 1.0f, 0.0f});
-  scene.objects.push_back(make_object(
-      "rod", make_box({-5.0f, -0.0015f, -0.0015f}, {5.0f, 0.0015f, 0.0015f}), rod_transform,
-      glm::vec3(0.5f)));
+  scene.objects.push_back(
+      make_object("rod", make_box({-5.0f, -0.0015f, -0.0015f}, {5.0f, 0.0015f, 0.0015f}),
+                  rod_transform, glm::vec3(0.5f)));
   scene.lights.push_back({{0.0f, 10.0f, 6.0f, 1.0f}});
   auto reference = trace_reference(scene, w, h);
   ASSERT_TRUE(reference.ok()) << reference.error().message;
