@@ -67,7 +67,7 @@ glm::vec4 point_point_light(const glm::vec3& p1, const glm::vec3& p2, const glm:
 // vertex from the axis); the thin axis (the least principal direction, by power iteration on
 // trace - covariance, whose largest eigenvalue is the trace minus the least), the interval of
 // the vertices' projections on it, and whether the object is flat: a hundred times thinner along
-// it than long.
+// it than long, and not elongated (a rod is thin across both of its short axes).
 struct Shape {
   glm::vec3 p1{0.0f}, p2{0.0f};
   bool elongated = false;
@@ -115,7 +115,8 @@ Shape shape_of(const std::vector<glm::vec3>& points) {
   shape.p2 = glm::vec3(mean + hi * dir);
   shape.elongated = hi - lo >= 2.0 * width;
   shape.thin_axis = thin;
-  shape.flat = thin != glm::dvec3(0.0) && shape.thin_hi - shape.thin_lo <= 0.01 * (hi - lo);
+  shape.flat = !shape.elongated && thin != glm::dvec3(0.0) &&
+               shape.thin_hi - shape.thin_lo <= 0.01 * (hi - lo);
   return shape;
 }
 

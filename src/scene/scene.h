@@ -39,8 +39,8 @@ struct Animation {
 // (Point-Camera-Light, §4.1) or through the object's long axis (Point-Point-Light, §4.2, for
 // long thin parts such as branches); or, ours, for a flat object such as a floor (`flat`), its
 // own plane moved just past it away from the light, which leaves its whole volume on the far
-// side. `auto` takes `flat` for an object a hundred times thinner than it is long, else `ppl`
-// for one at least twice as long as it is wide, else `pcl`.
+// side. `auto` takes `ppl` for an object at least twice as long as it is wide, else `flat` for
+// one a hundred times thinner than it is long, else `pcl`.
 enum class SplitPlaneChoice : std::uint8_t {
   automatic,
   point_camera_light,

@@ -6,9 +6,9 @@
 
 #include <cmath>
 
+#include <tbb/global_control.h>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
-#include <tbb/global_control.h>
 
 #include "render/frame_plan.h"
 #include "render/heatmap.h"
@@ -114,6 +114,50 @@ TEST(Renderer, SplitPlanesRunAlongLongThinObjects) {
   EXPECT_EQ(parse_split_plane_choice("ppl").value(), SplitPlaneChoice::point_point_light);
   EXPECT_EQ(parse_split_plane_choice("pp").error().message,
             "unknown split plane 'pp': expected auto, pcl, ppl or flat");
+}
+
+// A floor gets its own plane, moved just past it away from the light: every point of the floor
+// on the light's side, and its volume (below it) on the other. A rod a thousand times thinner
+// than long is elongated, not flat: it still gets Point-Point-Light.
+TEST(Renderer, FlatCastersGetTheirOwnPlaneAndRodsStayPointPointLight) {
+  Scene scene;
+  const glm::mat4 lift = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.5f, 0.0f));
+  scene.objects.push_back(make_object("floor", make_ground(4.0f), lift, glm::vec3(0.8f)));
+  scene.lights.push_back({{1.0f, 6.0f, 2.0f, 1.0f}, glm::vec3(1.0f), 1.0f});
+  scene.camera = {{0.0f, 3.0f, 6.0f}, {0.0f, 0.0f, 0.0f}};
+  const RenderOptions options{320, 200, Method::split_plane, Generator::automatic};
+  FrameStats stats;
+  const auto world_plane = [](const FramePlan& plan) {  // eye-relative, unit normal
+    glm::dvec4 plane = glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
+    return plane / glm::length(glm::dvec3(plane));
+  };
+  const FramePlan flat = plan_frame(scene, options, stats);
+  ASSERT_TRUE(flat.split[0][0].has_value());
+  const glm::dvec4 plane = world_plane(flat);
+  EXPECT_NEAR(std::abs(plane.y), 1.0, 1e-6);  // the floor's own orientation
+  const auto at = [&](const glm::vec3& world) {
+    return glm::dot(plane, glm::dvec4(glm::dvec3(world) - glm::dvec3(scene.camera.position), 1.0));
+  };
+  const double floor_side = at({0.0f, 0.5f, 0.0f}), light_side = at({1.0f, 6.0f, 2.0f});
+  const double below = at({0.0f, 0.3f, 0.0f});
+  EXPECT_GT(floor_side * light_side, 0.0);  // the floor with the light
+  EXPECT_LT(floor_side * below, 0.0);       // its volume beyond: the plane lies just under it
+  // A hundredth of its length along its long axis: between its side, 8, and its diagonal.
+  EXPECT_GE(std::abs(floor_side), 0.08 - 1e-6);
+  EXPECT_LE(std::abs(floor_side), 0.08 * std::sqrt(2.0) + 1e-6);
+
+  scene.objects[0] = make_object("rod", make_box({-5.0f, -0.005f, -0.005f}, {5.0f, 0.005f, 0.005f}),
+                                 lift, glm::vec3(0.8f));
+  const FramePlan rod = plan_frame(scene, options, stats);
+  ASSERT_TRUE(rod.split[0][0].has_value());
+  const glm::dvec4 rod_plane = world_plane(rod);
+  const auto rod_at = [&](const glm::vec3& world) {
+    return glm::dot(rod_plane,
+                    glm::dvec4(glm::dvec3(world) - glm::dvec3(scene.camera.position), 1.0));
+  };
+  EXPECT_NEAR(rod_at({1.0f, 6.0f, 2.0f}), 0.0, 1e-3);  // through the light (Point-Point-Light)
+  EXPECT_NEAR(rod_at({-5.0f, 0.5f, 0.0f}), 0.0, 1e-2);
+  EXPECT_NEAR(rod_at({5.0f, 0.5f, 0.0f}), 0.0, 1e-2);
 }
 
 TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
