@@ -27,6 +27,7 @@ struct SuiteMethod {
 const SuiteMethod kMethods[] = {{"zp+db", Method::zpass_prefill, {0.85f, 0.33f, 0.10f}},
                                 {"zf+db", Method::zfail, {0.13f, 0.40f, 0.75f}},
                                 {"spsv", Method::split_plane, {0.10f, 0.60f, 0.25f}}};
+constexpr std::size_t kZpassPrefill = 0, kZfail = 1, kSpsv = 2;  // in kMethods
 // Laine 2005 Table 1: the smallest factors by which the baselines exceed spsv (the goal) and
 // the largest (what we aim past), for pixels processed and pixels updated.
 constexpr double kGoalProcessed = 1.87, kGoalUpdated = 2.07;
@@ -123,7 +124,6 @@ int run_spsv_suite(const SuiteOptions& options) {
   for (const std::string_view scene_name : kScenes) {
     const Scene scene = *builtin_scene(scene_name);
     nlohmann::json scene_json{{"name", scene.name}, {"methods", nlohmann::json::object()}};
-    std::uint64_t spsv_processed = 0, spsv_updated = 0;
     // Frame by frame, each method with a renderer (and volume cache) of its own; the baselines
     // record their work per object and tile, for the oracle.
     std::vector<SoftRenderer> renderers(std::size(kMethods));
@@ -132,86 +132,80 @@ int run_spsv_suite(const SuiteOptions& options) {
     for (int f = 0; f < options.frames; ++f) {
       std::fprintf(stderr, "\r%s: frame %d of %d   ", scene.name.c_str(), f + 1, options.frames);
       const Scene at = scene_at_frame(scene, f);
-      std::vector<std::vector<std::vector<soft::TileWork>>> baseline_work;
-      for (std::size_t i = 0; i < std::size(kMethods); ++i) {
+      Oracle::Work work[std::size(kMethods)];  // per method: per object, per tile
+      for (std::size_t m = 0; m < std::size(kMethods); ++m) {
         RenderOptions o = render_options;
-        o.method = kMethods[i].method;
+        o.method = kMethods[m].method;
         o.tile_work = true;  // every method, so that all pay its cost in the count time
-        o.tile_work_per_object = o.method != Method::split_plane;
-        Frame frame = renderers[i].render(at, o);
-        all_series[i].add(frame.stats);
-        if (o.tile_work_per_object) baseline_work.push_back(std::move(frame.object_tile_work));
+        o.tile_work_per_object = m != kSpsv;
+        Frame frame = renderers[m].render(at, o);
+        all_series[m].add(frame.stats);
+        work[m] = std::move(frame.object_tile_work);
       }
-      oracle.add(baseline_work[0], baseline_work[1]);  // zp+db, zf+db: kMethods order
+      oracle.add(work[kZpassPrefill], work[kZfail]);
     }
     std::fprintf(stderr, "\r%60s\r", "");
-    std::vector<std::pair<std::string, Series>> results;
-    for (std::size_t i = 0; i < std::size(kMethods); ++i) {
-      const SuiteMethod& m = kMethods[i];
-      Series& series = all_series[i];
-      for (int f = 0; f < options.frames; ++f) {
-        const auto i = static_cast<std::size_t>(f);
-        csv += scene.name + "," + m.name + "," + std::to_string(f) + "," +
-               std::to_string(series.tiles_processed[i]) + "," +
-               std::to_string(series.nonculled_tiles[i]) + "," +
-               std::to_string(series.pixels_processed[i]) + "," +
-               std::to_string(series.pixels_updated[i]) + "," + std::to_string(series.count_ms[i]) +
+    for (std::size_t m = 0; m < std::size(kMethods); ++m) {
+      const char* name = kMethods[m].name;
+      const Series& series = all_series[m];
+      for (std::size_t f = 0; f < series.count_ms.size(); ++f)
+        csv += scene.name + "," + name + "," + std::to_string(f) + "," +
+               std::to_string(series.tiles_processed[f]) + "," +
+               std::to_string(series.nonculled_tiles[f]) + "," +
+               std::to_string(series.pixels_processed[f]) + "," +
+               std::to_string(series.pixels_updated[f]) + "," + std::to_string(series.count_ms[f]) +
                "\n";
-      }
-      scene_json["methods"][m.name] = {{"tiles_processed", total(series.tiles_processed)},
-                                       {"nonculled_tiles", total(series.nonculled_tiles)},
-                                       {"pixels_processed", total(series.pixels_processed)},
-                                       {"pixels_updated", total(series.pixels_updated)},
-                                       {"time_ms", total(series.count_ms)},
-                                       {"per_frame",
-                                        {{"tiles_processed", series.tiles_processed},
-                                         {"nonculled_tiles", series.nonculled_tiles},
-                                         {"pixels_processed", series.pixels_processed},
-                                         {"pixels_updated", series.pixels_updated},
-                                         {"time_ms", series.count_ms}}}};
+      scene_json["methods"][name] = {{"tiles_processed", total(series.tiles_processed)},
+                                     {"nonculled_tiles", total(series.nonculled_tiles)},
+                                     {"pixels_processed", total(series.pixels_processed)},
+                                     {"pixels_updated", total(series.pixels_updated)},
+                                     {"time_ms", total(series.count_ms)},
+                                     {"per_frame",
+                                      {{"tiles_processed", series.tiles_processed},
+                                       {"nonculled_tiles", series.nonculled_tiles},
+                                       {"pixels_processed", series.pixels_processed},
+                                       {"pixels_updated", series.pixels_updated},
+                                       {"time_ms", series.count_ms}}}};
       std::fprintf(table, "%-16s %-6s %12llu %12llu %14llu %14llu %10.1f\n", scene.name.c_str(),
-                   m.name, static_cast<unsigned long long>(total(series.tiles_processed)),
+                   name, static_cast<unsigned long long>(total(series.tiles_processed)),
                    static_cast<unsigned long long>(total(series.nonculled_tiles)),
                    static_cast<unsigned long long>(total(series.pixels_processed)),
                    static_cast<unsigned long long>(total(series.pixels_updated)),
                    total(series.count_ms));
-      if (m.method == Method::split_plane) {
-        spsv_processed = total(series.pixels_processed);
-        spsv_updated = total(series.pixels_updated);
-      }
-      results.emplace_back(m.name, std::move(series));
     }
     for (const Counter& counter : kCounters) {
       PlotPanel panel{scene.name + ": " + counter.title, {}};
-      for (std::size_t i = 0; i < results.size(); ++i) {
-        const std::vector<std::uint64_t>& values = results[i].second.*counter.values;
-        panel.series.push_back({results[i].first, kMethods[i].color,
+      for (std::size_t m = 0; m < std::size(kMethods); ++m) {
+        const std::vector<std::uint64_t>& values = all_series[m].*counter.values;
+        panel.series.push_back({kMethods[m].name, kMethods[m].color,
                                 std::vector<double>(values.begin(), values.end())});
       }
       chart.panels.push_back(std::move(panel));
     }
-    // Each baseline over spsv, against the goal.
-    nlohmann::json ratios = nlohmann::json::object();
-    for (const auto& [name, series] : results) {
-      if (name == "spsv") continue;
-      const double processed = double(total(series.pixels_processed)) / double(spsv_processed);
-      const double updated = double(total(series.pixels_updated)) / double(spsv_updated);
-      const bool met = processed >= kGoalProcessed && updated >= kGoalUpdated;
+    // Each baseline over spsv and over the oracle, against the goal.
+    const Series& spsv = all_series[kSpsv];
+    const double spsv_processed = double(total(spsv.pixels_processed));
+    const double spsv_updated = double(total(spsv.pixels_updated));
+    nlohmann::json ratios = nlohmann::json::object(), over_oracle = nlohmann::json::object();
+    for (std::size_t m = 0; m < std::size(kMethods); ++m) {
+      if (m == kSpsv) continue;
+      const char* name = kMethods[m].name;
+      const double processed = double(total(all_series[m].pixels_processed));
+      const double updated = double(total(all_series[m].pixels_updated));
+      const bool met =
+          processed / spsv_processed >= kGoalProcessed && updated / spsv_updated >= kGoalUpdated;
       all_met = all_met && met;
-      ratios[name] = {
-          {"pixels_processed", processed}, {"pixels_updated", updated}, {"goal_met", met}};
+      ratios[name] = {{"pixels_processed", processed / spsv_processed},
+                      {"pixels_updated", updated / spsv_updated},
+                      {"goal_met", met}};
+      over_oracle[name] = processed / double(oracle.processed);
       std::fprintf(table,
                    "%-16s %s / spsv: pixels processed %.2fx (goal >= %.2f), updated %.2fx "
                    "(goal >= %.2f)%s\n",
-                   "", name.c_str(), processed, kGoalProcessed, updated, kGoalUpdated,
-                   met ? "" : "  NOT MET");
+                   "", name, processed / spsv_processed, kGoalProcessed, updated / spsv_updated,
+                   kGoalUpdated, met ? "" : "  NOT MET");
     }
     scene_json["baseline_over_spsv"] = ratios;
-    // The oracle: what the best per-tile choice could reach.
-    nlohmann::json over_oracle = nlohmann::json::object();
-    for (const auto& [name, series] : results)
-      if (name != "spsv")
-        over_oracle[name] = double(total(series.pixels_processed)) / double(oracle.processed);
     scene_json["oracle"] = {{"pixels_processed", oracle.processed},
                             {"pixels_updated", oracle.updated},
                             {"baseline_over_oracle", over_oracle}};

@@ -74,17 +74,18 @@ const Glyph* glyph_of(char c) {
   return nullptr;
 }
 
-void fill(Image& image, int x, int y, int size, const glm::vec3& color) {
-  for (int j = std::max(y, 0); j < std::min(y + size, image.height); ++j)
-    for (int i = std::max(x, 0); i < std::min(x + size, image.width); ++i) {
-      std::uint8_t* px = &image.rgba[4 * (static_cast<std::size_t>(j) * image.width + i)];
-      for (int k = 0; k < 3; ++k)
-        px[k] = static_cast<std::uint8_t>(std::lround(std::clamp(color[k], 0.0f, 1.0f) * 255.0f));
-      px[3] = 255;
+}  // namespace
+
+void fill_rect(Image& image, int x0, int y0, int x1, int y1, const glm::vec3& color) {
+  std::uint8_t rgb[3];
+  for (int k = 0; k < 3; ++k)
+    rgb[k] = static_cast<std::uint8_t>(std::lround(std::clamp(color[k], 0.0f, 1.0f) * 255.0f));
+  for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y)
+    for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x) {
+      std::uint8_t* px = &image.rgba[4 * (static_cast<std::size_t>(y) * image.width + x)];
+      px[0] = rgb[0], px[1] = rgb[1], px[2] = rgb[2], px[3] = 255;
     }
 }
-
-}  // namespace
 
 int text_width(std::string_view text, int scale) {
   return text.empty() ? 0 : (static_cast<int>(text.size()) * kGlyphAdvance - 1) * scale;
@@ -98,7 +99,9 @@ void draw_text(Image& image, int x, int y, std::string_view text, const glm::vec
       for (int col = 0; col < kGlyphWidth; ++col) {
         const bool box = row == 0 || row == kGlyphHeight - 1 || col == 0 || col == kGlyphWidth - 1;
         const bool on = g ? g->rows[row][col] == '#' : c != ' ' && box;
-        if (on) fill(image, x + col * scale, y + row * scale, scale, color);
+        if (on)
+          fill_rect(image, x + col * scale, y + row * scale, x + (col + 1) * scale,
+                    y + (row + 1) * scale, color);
       }
     x += kGlyphAdvance * scale;
   }

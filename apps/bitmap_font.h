@@ -1,4 +1,4 @@
-// The command line's text on images: a 5x7 pixel font, drawn at any integer scale.
+// The command line's text and boxes on images: a 5x7 pixel font, drawn at any integer scale.
 //
 // Owns the glyphs (digits, letters, which are drawn as lower case, and the punctuation that
 // charts and labels use) and their placement; a character without a glyph is drawn as a box, so
@@ -15,6 +15,9 @@ namespace shadowvol {
 
 inline constexpr int kGlyphWidth = 5, kGlyphHeight = 7;
 inline constexpr int kGlyphAdvance = kGlyphWidth + 1;  // one column of space between glyphs
+
+// Fills the pixels [x0, x1) x [y0, y1), clipped to the image; colour in 0..1 sRGB.
+void fill_rect(Image& image, int x0, int y0, int x1, int y1, const glm::vec3& color);
 
 // The width in pixels of `text` at `scale`.
 int text_width(std::string_view text, int scale);

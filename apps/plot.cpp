@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 
 #include "bitmap_font.h"
@@ -15,19 +14,7 @@ constexpr int kLine = kGlyphHeight * kScale;
 constexpr int kPanelWidth = 480, kPanelHeight = 300;
 constexpr int kLeft = 84, kRight = 16, kTop = 34, kBottom = 56;  // plot area within a panel
 constexpr int kHeader = 3 * kLine + 40;                          // title and legend
-const glm::vec3 kInk{0.15f, 0.15f, 0.15f}, kGrid{0.88f, 0.88f, 0.88f}, kPaper{1.0f};
-
-void put(Image& image, int x, int y, const glm::vec3& color) {
-  if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
-  std::uint8_t* px = &image.rgba[4 * (static_cast<std::size_t>(y) * image.width + x)];
-  for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>(std::lround(color[k] * 255.0f));
-  px[3] = 255;
-}
-
-void rect(Image& image, int x0, int y0, int x1, int y1, const glm::vec3& color) {
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) put(image, x, y, color);
-}
+const glm::vec3 kInk{0.15f, 0.15f, 0.15f}, kGrid{0.88f, 0.88f, 0.88f};
 
 // A line `width` pixels thick, stepped pixel by pixel along its longer axis.
 void line(Image& image, double x0, double y0, double x1, double y1, const glm::vec3& color,
@@ -37,7 +24,7 @@ void line(Image& image, double x0, double y0, double x1, double y1, const glm::v
     const double t = steps == 0 ? 0.0 : double(i) / steps;
     const int x = static_cast<int>(std::lround(x0 + (x1 - x0) * t)) - width / 2;
     const int y = static_cast<int>(std::lround(y0 + (y1 - y0) * t)) - width / 2;
-    rect(image, x, y, x + width, y + width, color);
+    fill_rect(image, x, y, x + width, y + width, color);
   }
 }
 
@@ -83,21 +70,21 @@ void draw_panel(Image& image, int left, int top, const PlotPanel& panel,
   auto py = [&](double value) { return y1 - (y1 - y0) * value / y_max; };
   for (double v = 0.0; v <= y_max * (1.0 + 1e-9); v += y_step) {
     const int y = static_cast<int>(std::lround(py(v)));
-    rect(image, x0, y, x1, y + 1, kGrid);
+    fill_rect(image, x0, y, x1, y + 1, kGrid);
     const std::string label = short_count(v);
     draw_text(image, x0 - 8 - text_width(label, kScale), y - kLine / 2, label, kInk, kScale);
   }
   const double x_step = std::max(1.0, nice_step(x_max, 5));
   for (double f = 0.0; f <= x_max + 1e-9; f += x_step) {
     const int x = static_cast<int>(std::lround(px(f)));
-    rect(image, x, y1, x + 1, y1 + 5, kInk);
+    fill_rect(image, x, y1, x + 1, y1 + 5, kInk);
     const std::string label = short_count(f);
     draw_text(image, x - text_width(label, kScale) / 2, y1 + 9, label, kInk, kScale);
   }
   draw_text(image, (x0 + x1 - text_width(x_label, kScale)) / 2, y1 + 14 + kLine, x_label, kInk,
             kScale);
-  rect(image, x0, y0, x0 + 1, y1 + 1, kInk);  // axes
-  rect(image, x0, y1, x1 + 1, y1 + 1, kInk);
+  fill_rect(image, x0, y0, x0 + 1, y1 + 1, kInk);  // axes
+  fill_rect(image, x0, y1, x1 + 1, y1 + 1, kInk);
   for (const PlotSeries& s : panel.series)
     for (std::size_t f = 0; f < s.values.size(); ++f) {
       const double x = px(double(f)), y = py(s.values[f]);
@@ -112,8 +99,7 @@ Image draw_chart(const Chart& chart) {
   const int columns = std::max(1, chart.columns);
   const int rows = (static_cast<int>(chart.panels.size()) + columns - 1) / columns;
   Image image{columns * kPanelWidth + 20, kHeader + rows * kPanelHeight + 10, {}};
-  image.rgba.assign(static_cast<std::size_t>(image.width) * image.height * 4, 255);
-  rect(image, 0, 0, image.width, image.height, kPaper);
+  image.rgba.assign(static_cast<std::size_t>(image.width) * image.height * 4, 255);  // white
   draw_text(image, 20, 16, chart.title, kInk, kScale);
   // The legend: every series name once, in order of first appearance.
   int x = 20;
@@ -123,7 +109,7 @@ Image draw_chart(const Chart& chart) {
       if (std::find(named.begin(), named.end(), s.name) != named.end()) continue;
       named.push_back(s.name);
       const int y = 24 + 2 * kLine;
-      rect(image, x, y + kLine / 2 - 2, x + 36, y + kLine / 2 + 2, s.color);
+      fill_rect(image, x, y + kLine / 2 - 2, x + 36, y + kLine / 2 + 2, s.color);
       draw_text(image, x + 46, y, s.name, kInk, kScale);
       x += 46 + text_width(s.name, kScale) + 40;
     }

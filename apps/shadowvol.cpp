@@ -262,6 +262,12 @@ struct ResolvedFrame {
   gl::GlSettings gl;
 };
 
+// The method as the command line reports it, "(bounded)" after it where volumes are.
+std::string method_label(const RenderOptions& options) {
+  return std::string(to_string(options.method)) +
+         (options.extrusion == Extrusion::bounded ? " (bounded)" : "");
+}
+
 // Takes the soft backend for something only it draws (`reason` says what and why): an error
 // under --backend gl, a note under auto.
 Expected<void> take_soft_backend(Backend& backend, const std::string& reason) {
@@ -352,9 +358,7 @@ int render(const RenderArgs& args) {
   const Image& img = frame.image;
   if (auto ok = write_png(args.out, img); !ok) return fail(ok.error().message);
   std::cout << "wrote " << args.out << " (" << scene.name << ", " << img.width << "x" << img.height
-            << ", " << to_string(options.method)
-            << (options.extrusion == Extrusion::bounded ? " (bounded)" : "") << ", "
-            << (*renderer)->backend() << ")\n";
+            << ", " << method_label(options) << ", " << (*renderer)->backend() << ")\n";
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
     if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
@@ -430,10 +434,9 @@ int verify(const VerifyArgs& args) {
               << "\n";
   } else {
     std::printf(
-        "%s, %s%s, %s backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
+        "%s, %s, %s backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
         "one-pixel band: %s\n",
-        scene.name.c_str(), std::string(to_string(options.method)).c_str(),
-        options.extrusion == Extrusion::bounded ? " (bounded)" : "", backend.c_str(), options.width,
+        scene.name.c_str(), method_label(options).c_str(), backend.c_str(), options.width,
         options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band,
         c.mismatched_outside_band == 0 ? "matches the reference" : "DIFFERS from the reference");
   }

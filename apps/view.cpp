@@ -12,9 +12,9 @@
 // GLFW after epoxy, which provides the OpenGL declarations.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <stb/stb_easy_font.h>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/gtx/rotate_vector.hpp>
-#include <stb/stb_easy_font.h>
 
 #include "gl/objects.h"
 #include "image_file.h"
@@ -108,7 +108,8 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
       c.show_volumes = !c.show_volumes;
       break;
     case GLFW_KEY_G:
-      c.gl.volumes = c.gl.volumes == gl::VolumePath::cpu ? gl::VolumePath::gpu : gl::VolumePath::cpu;
+      c.gl.volumes =
+          c.gl.volumes == gl::VolumePath::cpu ? gl::VolumePath::gpu : gl::VolumePath::cpu;
       break;
     case GLFW_KEY_SPACE:
       c.paused = !c.paused;
@@ -125,8 +126,7 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
 class TextOverlay {
  public:
   static Expected<TextOverlay> create() {
-    auto program = gl::link_program(
-        "text", {{GL_VERTEX_SHADER, R"(#version 450 core
+    auto program = gl::link_program("text", {{GL_VERTEX_SHADER, R"(#version 450 core
 layout(location = 0) in vec2 position;  // pixels, y down
 layout(location = 1) in vec4 colour;
 layout(location = 0) uniform vec2 viewport;
@@ -136,7 +136,7 @@ void main() {
   gl_Position = vec4(position.x / viewport.x * 2.0 - 1.0, 1.0 - position.y / viewport.y * 2.0, 0.0, 1.0);
 }
 )"},
-                 {GL_FRAGMENT_SHADER, R"(#version 450 core
+                                             {GL_FRAGMENT_SHADER, R"(#version 450 core
 in vec4 tint;
 layout(location = 0) out vec4 colour;
 void main() { colour = tint; }
@@ -209,8 +209,8 @@ void show_image(const Image& image) {
   gl::Object texture = gl::make_texture(GL_TEXTURE_2D);
   glTextureStorage2D(texture.get(), 1, GL_RGBA8, image.width, image.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA,
-                      GL_UNSIGNED_BYTE, image.rgba.data());
+  glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      image.rgba.data());
   gl::Object fbo = gl::make_framebuffer();
   glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, texture.get(), 0);
   glBlitNamedFramebuffer(fbo.get(), 0, 0, 0, image.width, image.height, 0, image.height,
@@ -218,7 +218,8 @@ void show_image(const Image& image) {
 }
 
 Image read_window(int width, int height) {
-  Image image{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
+  Image image{width, height,
+              std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
   std::vector<std::uint8_t> rows(image.rgba.size());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   glReadBuffer(GL_BACK);
@@ -255,7 +256,8 @@ int fail(const std::string& message) {
 }  // namespace
 
 int run_viewer(const ViewArgs& args) {
-  glfwSetErrorCallback([](int, const char* text) { std::cerr << "shadowvol: glfw: " << text << "\n"; });
+  glfwSetErrorCallback(
+      [](int, const char* text) { std::cerr << "shadowvol: glfw: " << text << "\n"; });
   GlfwSession session;
   if (!session.ok)
     return fail(
@@ -265,8 +267,9 @@ int run_viewer(const ViewArgs& args) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(args.options.width, args.options.height,
-                                        ("shadowvol view: " + args.scene.name).c_str(), nullptr, nullptr);
+  GLFWwindow* window =
+      glfwCreateWindow(args.options.width, args.options.height,
+                       ("shadowvol view: " + args.scene.name).c_str(), nullptr, nullptr);
   if (window == nullptr)
     return fail(
         "cannot open a window with an OpenGL 4.5 core context (on Debian: apt-get install "
@@ -314,7 +317,8 @@ int run_viewer(const ViewArgs& args) {
       options.method = controls.method;
       options.show_volumes = controls.show_volumes;
       gl::GlSettings settings = controls.gl;
-      if (!gl::check_settings(settings, options.generator).ok()) settings.volumes = gl::VolumePath::cpu;
+      if (!gl::check_settings(settings, options.generator).ok())
+        settings.volumes = gl::VolumePath::cpu;
       (*renderer)->set_settings(settings);
 
       const auto start = std::chrono::steady_clock::now();
@@ -327,7 +331,8 @@ int run_viewer(const ViewArgs& args) {
         stats = (*renderer)->present(scene, options);
       }
       const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
       smoothed_ms = shown == 0 ? ms : 0.9 * smoothed_ms + 0.1 * ms;
 
       char line[256];
@@ -345,10 +350,13 @@ int run_viewer(const ViewArgs& args) {
         const int zfail = o < stats.zfail_lights.size() ? stats.zfail_lights[o] : 0;
         const int lights = static_cast<int>(scene.lights.size());
         std::snprintf(line, sizeof line, "  %s: %s", scene.objects[o].name.c_str(),
-                      zfail == 0 ? "z-pass" : zfail == lights ? "z-fail" : "z-fail for some lights");
+                      zfail == 0        ? "z-pass"
+                      : zfail == lights ? "z-fail"
+                                        : "z-fail for some lights");
         lines.push_back(line);
       }
-      lines.push_back("drag: orbit  right drag: pan  wheel: zoom  shift+drag: light  F12: screenshot");
+      lines.push_back(
+          "drag: orbit  right drag: pan  wheel: zoom  shift+drag: light  F12: screenshot");
       text->draw(lines, width, height);
 
       ++shown;

@@ -217,6 +217,8 @@ struct VolumeOptions {
   Generator generator = Generator::automatic;
   bool caps = true;  // only z-fail needs caps; z-pass draws the sides alone
   glm::vec4 far_plane = kPlaneAtInfinity;
+
+  bool operator==(const VolumeOptions&) const = default;
 };
 
 // Per-frame scratch memory of build_volume, owned by the caller and reused between frames.

@@ -48,7 +48,13 @@ bool may_shadow_near_plane(const glm::vec3& centre, float radius,
 // orthogonal to the plane of that line and the camera, so that it splits the volume in halves
 // as the camera sees them. Degenerate (zero) when the camera lies on the centre line, which the
 // split test reads as z-fail everywhere: still exact.
-glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light);
+glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light) {
+  const glm::dvec3 centre(p);
+  const glm::dvec3 along =
+      light.w != 0.0f ? centre - glm::dvec3(light) / double(light.w) : -glm::dvec3(light);
+  const glm::dvec3 normal = glm::cross(glm::cross(-centre, along), along);
+  return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, centre)));
+}
 
 // Laine 2005 §4.2, Eq. 5: the plane through the light and the two points p1 and p2 (the ends of
 // a long thin object's axis), so that it runs inside the flat volume such an object casts.
@@ -139,21 +145,13 @@ std::optional<glm::vec4> flat_plane(const Shape& shape, const glm::vec4& light) 
   return std::nullopt;
 }
 
-glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light) {
-  const glm::dvec3 centre(p);
-  const glm::dvec3 along =
-      light.w != 0.0f ? centre - glm::dvec3(light) / double(light.w) : -glm::dvec3(light);
-  const glm::dvec3 normal = glm::cross(glm::cross(-centre, along), along);
-  return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, centre)));
-}
-
 // The far plane that ends an object's bounded volume (core/volume.h, Extrusion::bounded),
 // eye-relative: facing away from the light along the line from the light through the object's
 // box centre (along a directional light's rays), a little beyond the farthest corner of `reach`
 // (the scene's box and the near-plane rectangle, so that every receiver and the pre-fill's near
-// plane lie on its kept side). The plane at infinity where a point light is among the object's
-// box corners, seen from it within 84 degrees of that line for none or not all of them: rays
-// that graze the plane would be extruded to huge coordinates.
+// plane lie on its kept side). The plane at infinity where a point light sits on one of the
+// object's box corners or sees one more than 84 degrees from that line: rays that graze the
+// plane would be extruded to huge coordinates.
 glm::vec4 bounded_far_plane(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& reach_lo,
                             const glm::vec3& reach_hi, const glm::vec4& light) {
   const glm::dvec3 centre = (glm::dvec3(lo) + glm::dvec3(hi)) * 0.5;
@@ -336,9 +334,7 @@ std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
     const VolumeOptions options{generator, plan.builds_caps(light, o),
                                 plan.object_far_plane(light, o)};
     Entry& c = cache[o];
-    if (c.topology == object.topology && c.light == object_light &&
-        c.options.generator == options.generator && c.options.caps == options.caps &&
-        c.options.far_plane == options.far_plane) {
+    if (c.topology == object.topology && c.light == object_light && c.options == options) {
       ++stats.volumes_reused;
       continue;
     }

@@ -36,7 +36,8 @@ struct FramePlan {
   std::vector<std::uint32_t> first_id;
   std::vector<std::vector<bool>> zfail;  // [light][object]: draw this volume by z-fail
   // [light][object]: under Method::split_plane, the volume's split plane in clip space (Laine
-  // 2005 §4.1, Point-Camera-Light); none where the volume is drawn by one rule whole.
+  // 2005 §4: Point-Camera-Light or Point-Point-Light; or ours, `flat`, as the object's
+  // SplitPlaneChoice says); none where the volume is drawn by one rule whole.
   std::vector<std::vector<std::optional<glm::vec4>>> split;
   // [light][object]: z-pass counts of this volume start from the near-plane pre-fill (ZP+):
   // under Method::zpass_prefill, and in a split plane's z-pass tiles, where the volume may

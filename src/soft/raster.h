@@ -140,9 +140,9 @@ struct SplitPlane {
 CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::vec4& plane);
 
 // A depth-bounds test (EXT_depth_bounds_test; McGuire et al. 2003): pixels whose stored depth
-// lies outside [zmin, zmax] are left alone. For a shadow volume, [0, its nearest depth]: a
-// surface in front of the whole volume is outside it, and under z-fail would otherwise be
-// touched by every primitive only for their counts to cancel.
+// lies outside [zmin, zmax] are left alone. For a shadow volume, its range of depths: a surface
+// in front of the whole volume, or behind the whole of a bounded one, is outside it, and would
+// otherwise be touched by every primitive only for their counts to cancel.
 struct DepthBounds {
   float zmin = 0.0f;
   float zmax = 1.0f;
