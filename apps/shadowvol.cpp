@@ -289,6 +289,12 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!method) return make_error("--method: " + method.error().message);
   auto generator = parse_generator(args.generator);
   if (!generator) return make_error("--generator: " + generator.error().message);
+  if (*generator == Generator::standard && has_transparent_casters(*scene))
+    return make_error(
+        "--generator standard counts only the surfaces that face the light, but scene " +
+        scene->name +
+        " has transparent casters, whose every surface filters the light: use robust, "
+        "multiplicity or auto");
   auto size = parse_size(args.size);
   if (!size) return size.error();
   auto extrusion = parse_extrusion(args.extrusion);
@@ -411,6 +417,7 @@ int verify(const VerifyArgs& args) {
   auto reference = trace_reference(scene, options.width, options.height);
   if (!reference) return fail(reference.error().message);
   const Comparison c = compare(frame, *reference);
+  const bool glass = has_transparent_casters(scene);
   if (c.pixels_compared == 0)  // a comparison of nothing proves nothing
     return fail(
         "nothing to compare: no visible surface faces a light (check the camera and the "
@@ -429,15 +436,24 @@ int verify(const VerifyArgs& args) {
                                 {"height", options.height},
                                 {"pixels_compared", c.pixels_compared},
                                 {"mismatched", c.mismatched},
-                                {"mismatched_outside_band", c.mismatched_outside_band}}
+                                {"mismatched_outside_band", c.mismatched_outside_band},
+                                {"transparent_casters", glass},
+                                {"max_light_error", c.max_light_error},
+                                {"max_light_error_outside_band", c.max_light_error_outside_band}}
                      .dump(2)
               << "\n";
   } else {
+    char light[160] = "";
+    if (glass)
+      std::snprintf(light, sizeof light,
+                    "; light through transparent casters off by at most %.6f outside the band "
+                    "(%.6f allowed; %.6f within it)",
+                    c.max_light_error_outside_band, kLightTolerance, c.max_light_error);
     std::printf(
         "%s, %s, %s backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
-        "one-pixel band: %s\n",
+        "one-pixel band%s: %s\n",
         scene.name.c_str(), method_label(options).c_str(), backend.c_str(), options.width,
-        options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band,
+        options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band, light,
         c.mismatched_outside_band == 0 ? "matches the reference" : "DIFFERS from the reference");
   }
   return c.mismatched_outside_band == 0 ? 0 : 1;

@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
@@ -163,10 +164,10 @@ struct GlRenderer::VolumeUpload {
   GLsizei vertices = 0;
   bool unit_weights = true;  // every weight +-1
 
-  void upload(const VolumeBuffer& volume, bool caps);
+  void upload(const VolumeBuffer& volume, bool light_caps, bool dark_caps);
 };
 
-void GlRenderer::VolumeUpload::upload(const VolumeBuffer& volume, bool caps) {
+void GlRenderer::VolumeUpload::upload(const VolumeBuffer& volume, bool light_caps, bool dark_caps) {
   std::map<std::int32_t, std::vector<VolumeVertex>> by_weight;
   auto add = [&](const PrimitiveList& list, int corners) {
     const int per = corners == kQuadCorners ? 2 : 1;
@@ -180,10 +181,8 @@ void GlRenderer::VolumeUpload::upload(const VolumeBuffer& volume, bool caps) {
     }
   };
   add(volume.sides, kQuadCorners);
-  if (caps) {
-    add(volume.light_caps, kTriangleCorners);
-    add(volume.dark_caps, kTriangleCorners);
-  }
+  if (light_caps) add(volume.light_caps, kTriangleCorners);
+  if (dark_caps) add(volume.dark_caps, kTriangleCorners);
   std::vector<VolumeVertex> all;
   groups.clear();
   unit_weights = true;
@@ -213,19 +212,22 @@ struct GlRenderer::Targets {
   int width = 0, height = 0;
   Object ids = make_texture(GL_TEXTURE_2D), color = make_texture(GL_TEXTURE_2D),
          depth_stencil = make_texture(GL_TEXTURE_2D), counts = make_texture(GL_TEXTURE_2D),
-         out = make_texture(GL_TEXTURE_2D);
-  // scene: ids, colour, depth-stencil; counts: the additive count target and the same
-  // depth-stencil; out: the sRGB frame.
-  Object scene = make_framebuffer(), count = make_framebuffer(), resolved = make_framebuffer();
+         log_light = make_texture(GL_TEXTURE_2D), out = make_texture(GL_TEXTURE_2D);
+  // scene: ids, colour, depth-stencil; count: the additive count target and the same
+  // depth-stencil; light: the log light map of transparent casters (RGBA32F) and the same
+  // depth-stencil; resolved: the sRGB frame.
+  Object scene = make_framebuffer(), count = make_framebuffer(), light = make_framebuffer(),
+         resolved = make_framebuffer();
 
   Targets(int w, int h) : width(w), height(h) {
     glTextureStorage2D(ids.get(), 1, GL_R32UI, w, h);
     glTextureStorage2D(color.get(), 1, GL_RGBA32F, w, h);
     glTextureStorage2D(depth_stencil.get(), 1, GL_DEPTH32F_STENCIL8, w, h);
     glTextureStorage2D(counts.get(), 1, GL_R32F, w, h);
+    glTextureStorage2D(log_light.get(), 1, GL_RGBA32F, w, h);
     glTextureStorage2D(out.get(), 1, GL_RGBA8, w, h);
     // Read with texelFetch only; nearest filtering also keeps the integer texture complete.
-    for (const Object* texture : {&ids, &color, &counts, &out}) {
+    for (const Object* texture : {&ids, &color, &counts, &log_light, &out}) {
       glTextureParameteri(texture->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTextureParameteri(texture->get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
@@ -234,10 +236,12 @@ struct GlRenderer::Targets {
     glNamedFramebufferTexture(scene.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil.get(), 0);
     glNamedFramebufferTexture(count.get(), GL_COLOR_ATTACHMENT0, counts.get(), 0);
     glNamedFramebufferTexture(count.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil.get(), 0);
+    glNamedFramebufferTexture(light.get(), GL_COLOR_ATTACHMENT0, log_light.get(), 0);
+    glNamedFramebufferTexture(light.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil.get(), 0);
     glNamedFramebufferTexture(resolved.get(), GL_COLOR_ATTACHMENT0, out.get(), 0);
   }
   bool complete() const {
-    for (const Object* fbo : {&scene, &count, &resolved})
+    for (const Object* fbo : {&scene, &count, &light, &resolved})
       if (glCheckNamedFramebufferStatus(fbo->get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return false;
     return true;
@@ -285,6 +289,9 @@ Expected<std::unique_ptr<GlRenderer>> GlRenderer::create(GlSettings settings,
        {{GL_VERTEX_SHADER, kPassVertex},
         {GL_GEOMETRY_SHADER, kVolumeGeometry},
         {GL_FRAGMENT_SHADER, kCountFragment}}},
+      {&r->background_,
+       "background",
+       {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kBackgroundFragment}}},
       {&r->resolve_,
        "resolve",
        {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveFragment}}},
@@ -354,11 +361,293 @@ FrameStats GlRenderer::present(const Scene& scene, const RenderOptions& options)
   return frame.stats;
 }
 
+// What the passes of one frame share.
+struct GlRenderer::Pass {
+  const Scene& scene;
+  const RenderOptions& options;
+  const FramePlan& plan;
+  const std::vector<MeshBuffers*>& meshes;
+  bool cpu;        // volumes built on the CPU (else in the geometry shader)
+  bool read_back;  // ids, masks and light into the Frame
+  Frame& frame;
+};
+
+template <class PerObject>
+void GlRenderer::draw_surfaces(const Pass& pass, bool glass, PerObject&& per_object) {
+  for (std::size_t o = 0; o < pass.scene.objects.size(); ++o) {
+    if (pass.scene.objects[o].material.transparent() != glass) continue;
+    const glm::mat4 mvp = pass.plan.view_proj * pass.plan.model[o];
+    glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    per_object(o);
+    glBindVertexArray(pass.meshes[o]->vao.get());
+    glDrawElements(GL_TRIANGLES, pass.meshes[o]->index_count, GL_UNSIGNED_INT, nullptr);
+  }
+}
+
+void GlRenderer::read_ids(const Pass& pass, bool glass, SurfaceLayer& layer) {
+  const int w = pass.options.width, h = pass.options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  std::vector<std::uint32_t> ids(pixels);
+  glNamedFramebufferReadBuffer(targets_->scene.get(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, targets_->scene.get());
+  glReadnPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                static_cast<GLsizei>(pixels * sizeof(std::uint32_t)), ids.data());
+  layer.object.assign(pixels, -1);
+  layer.face.assign(pixels, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::uint32_t id = ids[static_cast<std::size_t>(h - 1 - y) * w + x];
+      if (id == 0) continue;
+      const auto [object, face] = pass.plan.object_of(id - 1);
+      // After the glass layer's depth pass, the ids of opaque surfaces it did not cover remain.
+      if (object < 0 ||
+          pass.scene.objects[static_cast<std::size_t>(object)].material.transparent() != glass)
+        continue;
+      const std::size_t p = static_cast<std::size_t>(y) * w + x;
+      layer.object[p] = object;
+      layer.face[p] = face;
+    }
+}
+
+void GlRenderer::light_layer(const Pass& pass, std::size_t l, bool glass_layer,
+                             SurfaceLayer& layer) {
+  const Scene& scene = pass.scene;
+  const FramePlan& plan = pass.plan;
+  const RenderOptions& options = pass.options;
+  FrameStats& stats = pass.frame.stats;
+  Targets& t = *targets_;
+  const int w = options.width, h = options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  const bool cpu = pass.cpu;
+  const bool glass = !plan.glass_log_transmittance.empty();
+  const float zero[4] = {0, 0, 0, 0};
+
+  // Volumes: from the CPU cache (uploaded where rebuilt), or none to make here (the geometry
+  // shader builds them during the count pass).
+  auto start = Clock::now();
+  std::vector<std::unique_ptr<VolumeUpload>>& uploads = uploads_[l];
+  bool unit_weights = true;   // of the opaque casters, which the count target takes
+  if (!cpu) uploads.clear();  // the cache may change unseen: upload afresh when back on cpu
+  uploads.resize(scene.objects.size());
+  if (cpu || options.show_volumes) {
+    const std::vector<bool> rebuilt = volumes_.update(scene, plan, l, options.generator, stats);
+    for (std::size_t o = 0; cpu && o < scene.objects.size(); ++o) {
+      const bool fresh = !uploads[o];
+      if (fresh) uploads[o] = std::make_unique<VolumeUpload>();
+      if (fresh || rebuilt[o])
+        uploads[o]->upload(volumes_.volume(l, o),
+                           plan.zfail[l][o] || plan.counts_light_caps_everywhere(o),
+                           plan.zfail[l][o]);
+      if (plan.glass_group[o] < 0) unit_weights = unit_weights && uploads[o]->unit_weights;
+      stats.volume_primitives += volumes_.volume(l, o).primitive_count();
+    }
+  }
+  stats.ms_volumes += ms_since(start);
+
+  // Sets up one draw of weight sign `sign` under `rule`, into an additive target or the stencil.
+  auto count_state = [&](bool additive, Rule rule, int sign) {
+    if (additive) {
+      glDepthFunc(rule == Rule::zpass ? GL_GREATER : GL_LEQUAL);
+      glUniform1f(glsl::kRuleSign, static_cast<float>(rule == Rule::zpass ? sign : -sign));
+      return;
+    }
+    glDepthFunc(GL_GREATER);
+    const GLenum up = sign > 0 ? GL_INCR_WRAP : GL_DECR_WRAP;
+    const GLenum down = sign > 0 ? GL_DECR_WRAP : GL_INCR_WRAP;
+    if (rule == Rule::zpass) {
+      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, up);
+      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, down);
+    } else {
+      glStencilOpSeparate(GL_FRONT, GL_KEEP, down, GL_KEEP);
+      glStencilOpSeparate(GL_BACK, GL_KEEP, up, GL_KEEP);
+    }
+  };
+  // Draws the volume of object o for this light into the bound target.
+  auto draw_volume = [&](std::size_t o, bool additive) {
+    const Rule rule = plan.zfail[l][o] ? Rule::zfail : Rule::zpass;
+    // z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: clamp rather
+    // than clip. (z-pass keeps near-plane clipping, as the software backend does.)
+    if (rule == Rule::zfail)
+      glEnable(GL_DEPTH_CLAMP);
+    else
+      glDisable(GL_DEPTH_CLAMP);
+    const glm::mat4 mvp = plan.view_proj * plan.model[o];
+    glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    const int mirror = plan.weight_sign[o];
+    if (cpu) {
+      const VolumeUpload& up = *uploads[o];
+      glBindVertexArray(up.vao.get());
+      if (additive) {
+        count_state(true, rule, mirror);
+        glDrawArrays(GL_TRIANGLES, 0, up.vertices);
+      } else {
+        for (const VolumeUpload::Group& g : up.groups) {
+          count_state(false, rule, g.weight > 0 ? mirror : -mirror);
+          for (int k = 0; k < std::abs(g.weight); ++k) glDrawArrays(GL_TRIANGLES, g.first, g.count);
+        }
+      }
+      return;
+    }
+    const SceneObject& object = scene.objects[o];
+    const glm::vec4 object_light = object_space_light(object, scene.lights[l].position);
+    const bool robust = resolve_generator(object_generator(object, options.generator),
+                                          object.topology->report) != Generator::standard;
+    MeshBuffers& m = *pass.meshes[o];
+    if (!m.adjacency_vao) m.build_adjacency();
+    glBindVertexArray(m.adjacency_vao.get());
+    glUniform4fv(glsl::kLight, 1, glm::value_ptr(object_light));
+    glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(plan.object_far_plane(l, o)));
+    glUniform1i(glsl::kRobust, robust);
+    glUniform1i(glsl::kCaps, rule == Rule::zfail                    ? glsl::kCapsAll
+                             : plan.counts_light_caps_everywhere(o) ? glsl::kCapsLight
+                                                                    : glsl::kCapsNone);
+    auto draw_emit = [&](int emit, int sign) {
+      glUniform1i(glsl::kEmit, emit);
+      count_state(additive, rule, sign);
+      glDrawElements(GL_TRIANGLES_ADJACENCY, m.adjacency_index_count, GL_UNSIGNED_INT, nullptr);
+    };
+    if (additive) {
+      draw_emit(glsl::kEmitWeighted, mirror);
+    } else {
+      draw_emit(glsl::kEmitPositive, mirror);
+      if (robust && rule == Rule::zfail) draw_emit(glsl::kEmitNegative, -mirror);
+    }
+  };
+
+  // --- the opaque casters' counts: the shadow mask ---
+  const bool additive = settings_.counts == CountTarget::additive ||
+                        (settings_.counts == CountTarget::automatic && !unit_weights);
+  glFinish();
+  start = Clock::now();
+  if (additive) {
+    glBindFramebuffer(GL_FRAMEBUFFER, t.count.get());
+    glClearNamedFramebufferfv(t.count.get(), GL_COLOR, 0, zero);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  } else {
+    glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+    const GLint no_count = 0;
+    glClearNamedFramebufferiv(t.scene.get(), GL_STENCIL, 0, &no_count);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  }
+  glUseProgram(cpu ? volume_cpu_.get() : volume_gpu_.get());
+  glUniform3f(glsl::kPerCount, 1.0f, 0.0f, 0.0f);
+  for (std::size_t o = 0; o < scene.objects.size(); ++o)
+    if (plan.glass_group[o] < 0) draw_volume(o, additive);
+  glDisable(GL_DEPTH_CLAMP);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);  // the stencil holds the mask until the lit pass reads it
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glFinish();
+  stats.ms_counts += ms_since(start);
+  if (pass.read_back) {
+    start = Clock::now();
+    std::vector<std::uint8_t>& mask = layer.shadowed[l];
+    if (additive) {
+      std::vector<float> counts(pixels);
+      glNamedFramebufferReadBuffer(t.count.get(), GL_COLOR_ATTACHMENT0);
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, t.count.get());
+      glReadnPixels(0, 0, w, h, GL_RED, GL_FLOAT, static_cast<GLsizei>(pixels * sizeof(float)),
+                    counts.data());
+      flip_rows(counts, w, h, mask, [](float c) -> std::uint8_t { return c != 0.0f; });
+    } else {
+      std::vector<std::uint8_t> stencil(pixels);
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, t.scene.get());
+      glReadnPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels),
+                    stencil.data());
+      flip_rows(stencil, w, h, mask, [](std::uint8_t c) -> std::uint8_t { return c != 0; });
+    }
+    stats.ms_readback += ms_since(start);
+  }
+
+  // --- the transparent casters' log light map (Kim et al. Eq. 3): each count adds its
+  // caster's log transmittance, in float32 with additive blending ---
+  if (glass) {
+    glFinish();
+    start = Clock::now();
+    glBindFramebuffer(GL_FRAMEBUFFER, t.light.get());
+    glClearNamedFramebufferfv(t.light.get(), GL_COLOR, 0, zero);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+      if (plan.glass_group[o] < 0) continue;
+      glUniform3fv(
+          glsl::kPerCount, 1,
+          glm::value_ptr(
+              plan.glass_log_transmittance[static_cast<std::size_t>(plan.glass_group[o])]));
+      draw_volume(o, true);
+    }
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_BLEND);
+    glFinish();
+    stats.ms_counts += ms_since(start);
+    if (pass.read_back) {
+      start = Clock::now();
+      std::vector<glm::vec4> log_light(pixels);
+      glNamedFramebufferReadBuffer(t.light.get(), GL_COLOR_ATTACHMENT0);
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, t.light.get());
+      glReadnPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels * sizeof(glm::vec4)),
+                    log_light.data());
+      flip_rows(log_light, w, h, layer.transmitted[l],
+                [](const glm::vec4& c) { return glm::exp(glm::vec3(c)); });
+      for (std::size_t p = 0; p < pixels; ++p)
+        if (layer.shadowed[l][p]) layer.transmitted[l][p] = glm::vec3(0.0f);
+      stats.ms_readback += ms_since(start);
+    }
+  }
+
+  // --- lit pass: the layer's surfaces again, at equal depth, added where the count is 0 ---
+  start = Clock::now();
+  const GLenum colour_only[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, colour_only);
+  glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+  if (additive) {
+    glDisable(GL_STENCIL_TEST);
+    glBindTextureUnit(0, t.counts.get());
+  } else {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 0, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
+  glBindTextureUnit(1, t.log_light.get());
+  glBindTextureUnit(2, t.ids.get());  // read, not written: attachment 0 is off
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glDepthFunc(GL_EQUAL);
+  glUseProgram(surface_lit_[cpu ? 0 : 1].get());
+  const SceneLight& light = scene.lights[l];
+  const glm::vec3 radiance = light.color * light.intensity;
+  glUniform4fv(glsl::kLight, 1, glm::value_ptr(plan.lights[l]));
+  glUniform1i(glsl::kCountTexture, additive);
+  glUniform1i(glsl::kLightMap, glass);
+  glUniform1f(glsl::kSpecular, shading::kSpecular);
+  glUniform1f(glsl::kShininess, shading::kShininess);
+  draw_surfaces(pass, glass_layer, [&](std::size_t o) {
+    const Material& material = scene.objects[o].material;
+    const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(plan.model[o]))));
+    // A transparent surface reflects its opacity's share; the rest passes (the filter pass).
+    const glm::vec3 reflected = radiance * (glass_layer ? material.opacity : 1.0f);
+    glUniformMatrix4fv(glsl::kModel, 1, GL_FALSE, glm::value_ptr(plan.model[o]));
+    glUniformMatrix3fv(glsl::kNormalMatrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(material.color));
+    glUniform3fv(glsl::kRadiance, 1, glm::value_ptr(reflected));
+    glUniform1ui(glsl::kFirstId, plan.first_id[o]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pass.meshes[o]->normals.get());
+  });
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glDepthFunc(GL_GREATER);
+  glFinish();
+  stats.ms_shade += ms_since(start);
+}
+
 Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool read_back) {
   assert(check_options(options).ok());
   assert(check_settings(settings_, options.generator).ok());
   const int w = options.width, h = options.height;
-  const std::size_t pixels = static_cast<std::size_t>(w) * h;
   if (!targets_ || targets_->width != w || targets_->height != h) {
     targets_ = std::make_unique<Targets>(w, h);
     assert(targets_->complete());
@@ -367,10 +656,14 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
   Frame frame;
   FrameStats& stats = frame.stats;
   const FramePlan plan = plan_frame(scene, options, stats);
+  const bool glass = !plan.glass_log_transmittance.empty();
+  const std::size_t lights = scene.lights.size();
   for (auto& [topology, buffers] : meshes_) buffers->used = false;
   std::vector<MeshBuffers*> meshes;
   for (const SceneObject& object : scene.objects) meshes.push_back(&mesh_buffers(object));
   std::erase_if(meshes_, [](const auto& entry) { return !entry.second->used; });
+  const bool cpu = settings_.volumes == VolumePath::cpu;
+  const Pass pass{scene, options, plan, meshes, cpu, read_back, frame};
 
   glViewport(0, 0, w, h);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -378,250 +671,117 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
   glDisable(GL_CULL_FACE);
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_DEPTH_CLAMP);
-  glEnable(GL_DEPTH_TEST);
   // Reversed depth, as core/projection.h makes it: clip z in [0, w], window depth z / w.
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  const GLenum ids_only[] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+  const GLenum colour_only[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+  // Per light, the layer's shadows: sized here, filled by light_layer's read-back.
+  auto size_layer = [&](SurfaceLayer& layer) {
+    if (!read_back) return;
+    layer.shadowed.assign(lights, {});
+    layer.transmitted.assign(glass ? lights : 0, {});
+  };
+  uploads_.resize(std::max(uploads_.size(), lights));
 
-  // --- depth pass: face ids and the ambient term ---
+  // --- the background, then the depth pass: face ids and the ambient term ---
   glFinish();
   auto start = Clock::now();
-  const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(t.scene.get(), 2, both);
   glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
   const GLuint no_id = 0;
-  const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferuiv(t.scene.get(), GL_COLOR, 0, &no_id);
-  glClearNamedFramebufferfv(t.scene.get(), GL_COLOR, 1, zero);
   glDepthMask(GL_TRUE);
   glStencilMask(0xFF);
   glClearNamedFramebufferfi(t.scene.get(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, colour_only);
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(background_.get());
+  glUniform3fv(glsl::kBackgroundTop, 1, glm::value_ptr(shading::kBackgroundTop));
+  glUniform3fv(glsl::kBackgroundBottom, 1, glm::value_ptr(shading::kBackgroundBottom));
+  glUniform1i(glsl::kHeight, h);
+  glBindVertexArray(empty_vao_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, both);
   glDepthFunc(GL_GREATER);  // nearer is greater
-  const bool cpu = settings_.volumes == VolumePath::cpu;
   glUseProgram(surface_depth_[cpu ? 0 : 1].get());
   glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
-  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-    const glm::mat4 mvp = plan.view_proj * plan.model[o];
-    glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform1i(glsl::kVisibleOnly, GL_FALSE);
+  auto ids_and_albedo = [&](std::size_t o) {
     glUniform1ui(glsl::kFirstId, plan.first_id[o]);
     glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.color));
-    glBindVertexArray(meshes[o]->vao.get());
-    glDrawElements(GL_TRIANGLES, meshes[o]->index_count, GL_UNSIGNED_INT, nullptr);
     stats.triangles += scene.objects[o].mesh->triangle_count();
-  }
+  };
+  draw_surfaces(pass, false, ids_and_albedo);
   glFinish();
   stats.ms_depth = ms_since(start);
   if (read_back) {
     start = Clock::now();
-    std::vector<std::uint32_t> ids(pixels);
-    glNamedFramebufferReadBuffer(t.scene.get(), GL_COLOR_ATTACHMENT0);
-    glReadnPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                  static_cast<GLsizei>(pixels * sizeof(std::uint32_t)), ids.data());
-    frame.object.resize(pixels);
-    frame.face.resize(pixels);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const std::uint32_t id = ids[static_cast<std::size_t>(h - 1 - y) * w + x];
-        const std::size_t p = static_cast<std::size_t>(y) * w + x;
-        std::tie(frame.object[p], frame.face[p]) =
-            id == 0 ? std::pair<std::int32_t, std::uint32_t>{-1, 0} : plan.object_of(id - 1);
-      }
+    read_ids(pass, false, frame);
     stats.ms_readback += ms_since(start);
   }
-
-  // --- per light: volumes, counts, lit where the count is 0 ---
-  frame.shadowed.resize(scene.lights.size());
-  uploads_.resize(std::max(uploads_.size(), scene.lights.size()));
   glDepthMask(GL_FALSE);
-  for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-    // Volumes: from the CPU cache (uploaded where rebuilt), or none to make here (the geometry
-    // shader builds them during the count pass).
-    start = Clock::now();
-    std::vector<std::unique_ptr<VolumeUpload>>& uploads = uploads_[l];
-    bool unit_weights = true;
-    if (!cpu) uploads.clear();  // the cache may change unseen: upload afresh when back on cpu
-    uploads.resize(scene.objects.size());
-    if (cpu || options.show_volumes) {
-      const std::vector<bool> rebuilt = volumes_.update(scene, plan, l, options.generator, stats);
-      for (std::size_t o = 0; cpu && o < scene.objects.size(); ++o) {
-        const bool fresh = !uploads[o];
-        if (fresh) uploads[o] = std::make_unique<VolumeUpload>();
-        if (fresh || rebuilt[o]) uploads[o]->upload(volumes_.volume(l, o), plan.zfail[l][o]);
-        unit_weights = unit_weights && uploads[o]->unit_weights;
-        stats.volume_primitives += volumes_.volume(l, o).primitive_count();
-      }
-    }
-    stats.ms_volumes += ms_since(start);
+  size_layer(frame);
+  for (std::size_t l = 0; l < lights; ++l) light_layer(pass, l, false, frame);
 
-    const bool additive = settings_.counts == CountTarget::additive ||
-                          (settings_.counts == CountTarget::automatic && !unit_weights);
-    glFinish();
+  if (glass) {
+    // --- the glass layer: the nearest transparent surface in front of the opaque one; what
+    // lies behind it is filtered by its transmittance, and its ambient term added ---
     start = Clock::now();
-    if (additive) {
-      glBindFramebuffer(GL_FRAMEBUFFER, t.count.get());
-      glClearNamedFramebufferfv(t.count.get(), GL_COLOR, 0, zero);
-      glEnable(GL_BLEND);
-      glBlendFunc(GL_ONE, GL_ONE);
-      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    } else {
-      glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
-      const GLint no_count = 0;
-      glClearNamedFramebufferiv(t.scene.get(), GL_STENCIL, 0, &no_count);
-      glEnable(GL_STENCIL_TEST);
-      glStencilFunc(GL_ALWAYS, 0, 0xFF);
-      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    }
-    // Sets up one draw of weight sign `sign` under `rule`.
-    auto count_state = [&](Rule rule, int sign) {
-      if (additive) {
-        glDepthFunc(rule == Rule::zpass ? GL_GREATER : GL_LEQUAL);
-        glUniform1f(glsl::kRuleSign, static_cast<float>(rule == Rule::zpass ? sign : -sign));
-        return;
-      }
-      glDepthFunc(GL_GREATER);
-      const GLenum up = sign > 0 ? GL_INCR_WRAP : GL_DECR_WRAP;
-      const GLenum down = sign > 0 ? GL_DECR_WRAP : GL_INCR_WRAP;
-      if (rule == Rule::zpass) {
-        glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, up);
-        glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, down);
-      } else {
-        glStencilOpSeparate(GL_FRONT, GL_KEEP, down, GL_KEEP);
-        glStencilOpSeparate(GL_BACK, GL_KEEP, up, GL_KEEP);
-      }
-    };
-    glUseProgram(cpu ? volume_cpu_.get() : volume_gpu_.get());
-    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-      const Rule rule = plan.zfail[l][o] ? Rule::zfail : Rule::zpass;
-      // z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: clamp rather
-      // than clip. (z-pass keeps near-plane clipping, as the software backend does.)
-      if (rule == Rule::zfail)
-        glEnable(GL_DEPTH_CLAMP);
-      else
-        glDisable(GL_DEPTH_CLAMP);
-      const glm::mat4 mvp = plan.view_proj * plan.model[o];
-      glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-      const int mirror = plan.weight_sign[o];
-      if (cpu) {
-        const VolumeUpload& up = *uploads[o];
-        glBindVertexArray(up.vao.get());
-        if (additive) {
-          count_state(rule, mirror);
-          glDrawArrays(GL_TRIANGLES, 0, up.vertices);
-        } else {
-          for (const VolumeUpload::Group& g : up.groups) {
-            count_state(rule, g.weight > 0 ? mirror : -mirror);
-            for (int k = 0; k < std::abs(g.weight); ++k)
-              glDrawArrays(GL_TRIANGLES, g.first, g.count);
-          }
-        }
-        continue;
-      }
-      const SceneObject& object = scene.objects[o];
-      const glm::vec4 object_light = object_space_light(object, scene.lights[l].position);
-      const bool robust =
-          resolve_generator(options.generator, object.topology->report) != Generator::standard;
-      MeshBuffers& m = *meshes[o];
-      if (!m.adjacency_vao) m.build_adjacency();
-      glBindVertexArray(m.adjacency_vao.get());
-      glUniform4fv(glsl::kLight, 1, glm::value_ptr(object_light));
-      glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(plan.object_far_plane(l, o)));
-      glUniform1i(glsl::kRobust, robust);
-      glUniform1i(glsl::kCaps, rule == Rule::zfail);
-      auto draw_emit = [&](int emit, int sign) {
-        glUniform1i(glsl::kEmit, emit);
-        count_state(rule, sign);
-        glDrawElements(GL_TRIANGLES_ADJACENCY, m.adjacency_index_count, GL_UNSIGNED_INT, nullptr);
-      };
-      if (additive) {
-        draw_emit(glsl::kEmitWeighted, mirror);
-      } else {
-        draw_emit(glsl::kEmitPositive, mirror);
-        if (robust && rule == Rule::zfail) draw_emit(glsl::kEmitNegative, -mirror);
-      }
-    }
-    glDisable(GL_DEPTH_CLAMP);
-    glDisable(GL_BLEND);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glFinish();
-    stats.ms_counts += ms_since(start);
-    if (read_back) {
-      start = Clock::now();
-      std::vector<std::uint8_t>& mask = frame.shadowed[l];
-      if (additive) {
-        std::vector<float> counts(pixels);
-        glNamedFramebufferReadBuffer(t.count.get(), GL_COLOR_ATTACHMENT0);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, t.count.get());
-        glReadnPixels(0, 0, w, h, GL_RED, GL_FLOAT, static_cast<GLsizei>(pixels * sizeof(float)),
-                      counts.data());
-        flip_rows(counts, w, h, mask, [](float c) -> std::uint8_t { return c != 0.0f; });
-      } else {
-        std::vector<std::uint8_t> stencil(pixels);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, t.scene.get());
-        glReadnPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels),
-                      stencil.data());
-        flip_rows(stencil, w, h, mask, [](std::uint8_t c) -> std::uint8_t { return c != 0; });
-      }
-      stats.ms_readback += ms_since(start);
-    }
-
-    // Lit pass: the scene again, at equal depth, added where the count is 0.
-    start = Clock::now();
-    const GLenum colour_only[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(t.scene.get(), 2, colour_only);
     glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
-    if (additive) {
-      glDisable(GL_STENCIL_TEST);
-      glBindTextureUnit(0, t.counts.get());
-    } else {
-      glEnable(GL_STENCIL_TEST);
-      glStencilFunc(GL_EQUAL, 0, 0xFF);
-      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    }
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
+    glNamedFramebufferDrawBuffers(t.scene.get(), 2, ids_only);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_GREATER);
+    glUseProgram(surface_depth_[cpu ? 0 : 1].get());
+    draw_surfaces(pass, true, ids_and_albedo);
+    glDepthMask(GL_FALSE);
+    glNamedFramebufferDrawBuffers(t.scene.get(), 2, colour_only);
     glDepthFunc(GL_EQUAL);
-    glUseProgram(surface_lit_[cpu ? 0 : 1].get());
-    const SceneLight& light = scene.lights[l];
-    const glm::vec3 radiance = light.color * light.intensity;
-    glUniform4fv(glsl::kLight, 1, glm::value_ptr(plan.lights[l]));
-    glUniform3fv(glsl::kRadiance, 1, glm::value_ptr(radiance));
-    glUniform1i(glsl::kCountTexture, additive);
-    glUniform1f(glsl::kSpecular, shading::kSpecular);
-    glUniform1f(glsl::kShininess, shading::kShininess);
-    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-      const glm::mat4 mvp = plan.view_proj * plan.model[o];
-      const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(plan.model[o]))));
-      glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-      glUniformMatrix4fv(glsl::kModel, 1, GL_FALSE, glm::value_ptr(plan.model[o]));
-      glUniformMatrix3fv(glsl::kNormalMatrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
-      glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.color));
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, meshes[o]->normals.get());
-      glBindVertexArray(meshes[o]->vao.get());
-      glDrawElements(GL_TRIANGLES, meshes[o]->index_count, GL_UNSIGNED_INT, nullptr);
-    }
+    glEnable(GL_BLEND);
+    glBindTextureUnit(2, t.ids.get());  // read, not written: attachment 0 is off
+    glUniform1i(glsl::kVisibleOnly, GL_TRUE);
+    glBlendFunc(GL_ZERO, GL_SRC_COLOR);  // colour *= transmittance
+    glUniform3f(glsl::kAmbient, 1.0f, 1.0f, 1.0f);
+    draw_surfaces(pass, true, [&](std::size_t o) {
+      glUniform1ui(glsl::kFirstId, plan.first_id[o]);
+      glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.transmittance()));
+    });
+    glBlendFunc(GL_ONE, GL_ONE);  // colour += opacity * ambient * albedo
+    glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
+    draw_surfaces(pass, true, [&](std::size_t o) {
+      const Material& material = scene.objects[o].material;
+      const glm::vec3 reflected = material.opacity * material.color;
+      glUniform1ui(glsl::kFirstId, plan.first_id[o]);
+      glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(reflected));
+    });
+    glUniform1i(glsl::kVisibleOnly, GL_FALSE);
     glDisable(GL_BLEND);
-    glDisable(GL_STENCIL_TEST);
     glDepthFunc(GL_GREATER);
     glFinish();
-    stats.ms_shade += ms_since(start);
+    stats.ms_depth += ms_since(start);
+    if (read_back) {
+      start = Clock::now();
+      read_ids(pass, true, frame.glass);
+      stats.ms_readback += ms_since(start);
+    }
+    size_layer(frame.glass);
+    for (std::size_t l = 0; l < lights; ++l) light_layer(pass, l, true, frame.glass);
   }
 
-  // --- the frame out: background where no surface, colour to sRGB ---
+  // --- the frame out: colour to sRGB ---
   start = Clock::now();
   glBindFramebuffer(GL_FRAMEBUFFER, t.resolved.get());
   glDisable(GL_DEPTH_TEST);
   glUseProgram(resolve_.get());
   glBindTextureUnit(0, t.color.get());
-  glBindTextureUnit(1, t.ids.get());
-  glUniform3fv(glsl::kBackgroundTop, 1, glm::value_ptr(shading::kBackgroundTop));
-  glUniform3fv(glsl::kBackgroundBottom, 1, glm::value_ptr(shading::kBackgroundBottom));
-  glUniform1i(glsl::kHeight, h);
   glBindVertexArray(empty_vao_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glFinish();
   stats.ms_shade += ms_since(start);
   if (read_back) {
     start = Clock::now();
+    const std::size_t pixels = static_cast<std::size_t>(w) * h;
     std::vector<std::uint32_t> rgba(pixels);
     glNamedFramebufferReadBuffer(t.resolved.get(), GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, t.resolved.get());

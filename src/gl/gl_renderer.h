@@ -78,8 +78,18 @@ class GlRenderer final : public Renderer {
   struct MeshBuffers;
   struct VolumeUpload;
   struct Targets;
+  struct Pass;
   GlRenderer() = default;
   Frame draw(const Scene& scene, const RenderOptions& options, bool read_back);
+  // Draws the scene's opaque objects, or its transparent ones when `glass`, with the bound
+  // program: sets each one's mvp, lets per_object(o) set the rest of its uniforms.
+  template <class PerObject>
+  void draw_surfaces(const Pass& pass, bool glass, PerObject&& per_object);
+  // The ids of the depth pass into the layer's object and face (those of its kind only).
+  void read_ids(const Pass& pass, bool glass, SurfaceLayer& layer);
+  // Per light: the opaque casters' counts (the mask), the transparent casters' log light map,
+  // and the lit pass of the layer's surfaces, against the depth buffer as it stands.
+  void light_layer(const Pass& pass, std::size_t light, bool glass_layer, SurfaceLayer& layer);
   MeshBuffers& mesh_buffers(const SceneObject& object);
 
   std::optional<Context> context_;  // first member: destroyed last
@@ -88,7 +98,7 @@ class GlRenderer final : public Renderer {
   // [0]: the scene through a vertex shader alone; [1]: through a pass-through geometry shader,
   // to match the depths of geometry-shader volumes (shaders.h).
   Object surface_depth_[2], surface_lit_[2];
-  Object volume_cpu_, volume_gpu_, resolve_;
+  Object volume_cpu_, volume_gpu_, background_, resolve_;
   Object empty_vao_;
   std::unique_ptr<Targets> targets_;
   std::unordered_map<const Topology*, std::unique_ptr<MeshBuffers>> meshes_;

@@ -17,7 +17,12 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kRobust = 5, kCaps = 6, kEmit = 7, kAlbedo = 8, kRadiance = 9,
                      kCountTexture = 10, kFirstId = 11, kAmbient = 12, kSpecular = 13,
                      kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
-                     kFarPlane = 18;
+                     kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21;
+
+// Which caps the volume geometry shader emits (uniform kCaps).
+inline constexpr int kCapsNone = 0;   // z-pass of an opaque caster: sides only
+inline constexpr int kCapsLight = 1;  // z-pass of a transparent caster: light caps too
+inline constexpr int kCapsAll = 2;    // z-fail: light and dark caps
 
 // What the volume geometry shader emits in one draw (uniform kEmit).
 inline constexpr int kEmitPositive = 0;  // every primitive of weight +1 (stencil, first draw)
@@ -64,20 +69,27 @@ void main() {
 }
 )";
 
-// Depth pass: the face id (0 = background) and the ambient term.
+// Depth pass: the face id (0 = background) and the ambient term. Also, with visible_only, a
+// colour pass over the faces the depth pass left visible (a face coincident with the visible
+// one passes an equal-depth test too, and must not add its colour a second time).
 inline constexpr const char* kDepthFragment = R"(#version 450 core
 layout(location = 11) uniform uint first_id;
 layout(location = 8) uniform vec3 albedo;
 layout(location = 12) uniform vec3 ambient;
+layout(location = 21) uniform bool visible_only;
+layout(binding = 2) uniform usampler2D visible_ids;
 layout(location = 0) out uint id;
 layout(location = 1) out vec4 color;
 void main() {
   id = first_id + uint(gl_PrimitiveID) + 1u;
+  if (visible_only && texelFetch(visible_ids, ivec2(gl_FragCoord.xy), 0).r != id) discard;
   color = vec4(ambient * albedo, 1.0);
 }
 )";
 
-// One light where the count is 0: by the stencil test, or by reading the additive count target.
+// One light where the count is 0: by the stencil test, or by reading the additive count target;
+// with transparent casters, times the light that passes them, exp of the log light map. Only
+// on the face the depth pass left visible: coincident faces pass the equal-depth test too.
 inline constexpr const char* kLitFragment = R"(#version 450 core
 in Surface { vec3 eye_position; } surface;
 layout(std430, binding = 0) readonly buffer FaceNormals { vec4 normals[]; };
@@ -88,10 +100,17 @@ layout(location = 9) uniform vec3 radiance;
 layout(location = 10) uniform bool count_texture;
 layout(location = 13) uniform float specular;
 layout(location = 14) uniform float shininess;
+layout(location = 20) uniform bool light_map;
 layout(binding = 0) uniform sampler2D counts;
+layout(binding = 1) uniform sampler2D log_light;
+layout(location = 11) uniform uint first_id;
+layout(binding = 2) uniform usampler2D visible_ids;
 layout(location = 1) out vec4 color;
 void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  if (texelFetch(visible_ids, pixel, 0).r != first_id + uint(gl_PrimitiveID) + 1u) discard;
   if (count_texture && texelFetch(counts, ivec2(gl_FragCoord.xy), 0).r != 0.0) discard;
+  vec3 arriving = light_map ? exp(texelFetch(log_light, ivec2(gl_FragCoord.xy), 0).rgb) : vec3(1.0);
   vec3 n = normal_matrix * normals[gl_PrimitiveID].xyz;
   n = length(n) > 0.0 ? normalize(n) : vec3(0.0, 1.0, 0.0);
   vec3 eye_position = surface.eye_position;
@@ -101,7 +120,7 @@ void main() {
   float lambert = dot(n, to_light);
   if (lambert <= 0.0) discard;
   float spec = pow(max(0.0, dot(n, normalize(to_light + to_eye))), shininess);
-  color = vec4(radiance * (albedo * lambert + vec3(specular * spec)), 0.0);
+  color = vec4(radiance * arriving * (albedo * lambert + vec3(specular * spec)), 0.0);
 }
 )";
 
@@ -137,7 +156,7 @@ layout(triangle_strip, max_vertices = 18) out;
 in vec4 object_position[];
 layout(location = 4) uniform vec4 light;  // object space
 layout(location = 5) uniform bool robust;  // false: standard, front faces only
-layout(location = 6) uniform bool caps;    // z-fail
+layout(location = 6) uniform int caps;     // kCapsNone, kCapsLight, kCapsAll
 layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted
 layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity
 flat out int primitive_weight;
@@ -181,7 +200,7 @@ void main() {
   for (int i = 0; i < 6; ++i) p[i] = object_position[i];
   int f = facing(p[0], p[2], p[4]);
   if (f == 0 || (!robust && f < 0)) return;
-  if (caps) {
+  if (caps != 0) {
     // The light cap keeps its own vertex order (the depth pass's), whatever its sign: a
     // reversed triangle may rasterize to other depths. Hence the separate kEmitNegative draw.
     if (emit == 2 || (emit == 0 && f > 0) || (emit == 1 && f < 0)) {
@@ -192,7 +211,7 @@ void main() {
     }
     // The dark cap, weight -f: reversed where a draw takes only weight +1. (A directional
     // light's dark caps at infinity collapse to a point: none.)
-    if (emit != 1 && (light.w != 0.0 || far_plane != vec4(0.0, 0.0, 0.0, -1.0))) {
+    if (caps == 2 && emit != 1 && (light.w != 0.0 || far_plane != vec4(0.0, 0.0, 0.0, -1.0))) {
       bool reverse = emit == 0 && f > 0;
       int weight = emit == 0 ? 1 : -f;
       emit_far(0, weight);
@@ -221,11 +240,17 @@ void main() {
 
 // Counts: additive target (R32F, blended ONE + ONE) or, with colour writes off, the stencil.
 // z-pass adds a front face's weight, z-fail subtracts it (kRuleSign), back faces the opposite.
+// Each count adds per_count: (1, 0, 0) into the count target, or a transparent caster's log
+// transmittance into the log light map (RGBA32F; Kim et al. §3, Eq. 3).
 inline constexpr const char* kCountFragment = R"(#version 450 core
 flat in int primitive_weight;
 layout(location = 3) uniform float rule_sign;
-layout(location = 0) out float count;
-void main() { count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0); }
+layout(location = 19) uniform vec3 per_count;
+layout(location = 0) out vec4 count;
+void main() {
+  float c = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
+  count = vec4(c * per_count, 0.0);
+}
 )";
 
 // The frame out: lit colour or background, to sRGB.
@@ -236,26 +261,28 @@ void main() {
 }
 )";
 
-inline constexpr const char* kResolveFragment = R"(#version 450 core
-layout(binding = 0) uniform sampler2D accumulated;
-layout(binding = 1) uniform usampler2D ids;
+// The background, first into the colour target, so that transparent surfaces filter it too.
+inline constexpr const char* kBackgroundFragment = R"(#version 450 core
 layout(location = 15) uniform vec3 background_top;
 layout(location = 16) uniform vec3 background_bottom;
 layout(location = 17) uniform int height;
+layout(location = 1) out vec4 color;
+void main() {
+  float row = float(height - 1 - int(gl_FragCoord.y));  // row 0 at the top, as in soft
+  float fade = 1.0 - row / float(height);
+  color = vec4(background_bottom + (background_top - background_bottom) * fade, 1.0);
+}
+)";
+
+inline constexpr const char* kResolveFragment = R"(#version 450 core
+layout(binding = 0) uniform sampler2D accumulated;
 layout(location = 0) out vec4 color;
 float to_srgb(float c) {
   c = clamp(c, 0.0, 1.0);
   return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
 }
 void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
-  vec3 c;
-  if (texelFetch(ids, p, 0).r == 0u) {
-    float row = float(height - 1 - p.y);  // row 0 at the top, as in the software backend
-    c = background_bottom + (background_top - background_bottom) * (1.0 - row / float(height));
-  } else {
-    c = texelFetch(accumulated, p, 0).rgb;
-  }
+  vec3 c = texelFetch(accumulated, ivec2(gl_FragCoord.xy), 0).rgb;
   color = vec4(to_srgb(c.r), to_srgb(c.g), to_srgb(c.b), 1.0);
 }
 )";

@@ -233,6 +233,18 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   }
   for (const SceneLight& light : scene.lights)
     plan.lights.push_back(eye_relative(light.position, scene.camera.position));
+  plan.glass_group.assign(objects, -1);
+  std::vector<Material> glass_materials;
+  for (std::size_t o = 0; o < objects; ++o) {
+    const Material& material = scene.objects[o].material;
+    if (!material.transparent()) continue;
+    const auto known = std::find(glass_materials.begin(), glass_materials.end(), material);
+    plan.glass_group[o] = static_cast<int>(known - glass_materials.begin());
+    if (known == glass_materials.end()) {
+      glass_materials.push_back(material);
+      plan.glass_log_transmittance.push_back(log_transmittance(material));
+    }
+  }
 
   // The near-plane rectangle and each object's bounds, eye-relative, for the methods that
   // decide per object (and its long axis for split planes).
@@ -317,6 +329,21 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   return plan;
 }
 
+Generator object_generator(const SceneObject& object, Generator requested) {
+  return requested == Generator::automatic && object.material.transparent()
+             ? Generator::multiplicity
+             : requested;
+}
+
+glm::vec3 log_transmittance(const Material& material) {
+  glm::vec3 out;
+  for (int c = 0; c < 3; ++c) {
+    const float t = material.transmittance()[c];
+    out[c] = t > 0.0f ? std::max(std::log(t), kLogOfZero) : kLogOfZero;
+  }
+  return out;
+}
+
 glm::vec4 object_space_light(const SceneObject& object, const glm::vec4& light) {
   return glm::vec4(glm::inverse(glm::dmat4(object.transform)) * glm::dvec4(light));
 }
@@ -331,7 +358,7 @@ std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
     const glm::vec4 object_light = object_space_light(object, scene.lights[light].position);
-    const VolumeOptions options{generator, plan.builds_caps(light, o),
+    const VolumeOptions options{object_generator(object, generator), plan.builds_caps(light, o),
                                 plan.object_far_plane(light, o)};
     Entry& c = cache[o];
     if (c.topology == object.topology && c.light == object_light && c.options == options) {

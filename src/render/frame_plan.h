@@ -47,14 +47,24 @@ struct FramePlan {
   // Extrusion::bounded, a plane beyond the scene and the near plane; else, and where no plane
   // can end it well, the plane at infinity.
   std::vector<std::vector<glm::vec4>> far_plane;
+  // Transparent casters (Kim, Kim & Turk 2008 §2): per object, the index of its material's group
+  // in glass_log_transmittance, or -1 for an opaque object; per group (one per distinct
+  // transparent material, in order of first use), the logarithm of its transmittance per channel
+  // (kLogOfZero for a channel it passes none of): what each of its surfaces between a point and
+  // the light adds to the point's log light intensity.
+  std::vector<int> glass_group;
+  std::vector<glm::vec3> glass_log_transmittance;
 
   // Whether the volume of object o for light l counts its caps: z-fail does, and so do a split
   // plane's z-fail tiles. The volume is built with caps also where the pre-fill projects them.
   bool counts_caps(std::size_t l, std::size_t o) const {
     return zfail[l][o] || split[l][o].has_value();
   }
+  // A transparent caster is not in the depth buffer, so the surfaces seen through it lie behind
+  // its light caps: its light caps count under every rule (Kim et al. §1.2, Fig. 5).
+  bool counts_light_caps_everywhere(std::size_t o) const { return glass_group[o] >= 0; }
   bool builds_caps(std::size_t l, std::size_t o) const {
-    return counts_caps(l, o) || prefill[l][o];
+    return counts_caps(l, o) || prefill[l][o] || counts_light_caps_everywhere(o);
   }
 
   // far_plane[l][o] in the object's own space, where its volume is built.
@@ -70,6 +80,17 @@ struct FramePlan {
 // both pre-fill where `auto` would take z-fail, and take z-fail where the light lies in the near
 // plane, which no pre-fill can see. Counts the objects of each method into stats.
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
+
+// The generator that builds an object's volume: `requested`, except that `automatic` takes
+// multiplicity for a transparent object, whose every surface must count (standard counts only
+// those facing the light; callers refuse it for scenes with transparent casters).
+Generator object_generator(const SceneObject& object, Generator requested);
+
+// A stand-in for log(0) in the light intensity map: finite, so that a surface entered and left
+// again (+c, then -c) cancels exactly instead of giving inf - inf, and low enough that exp of
+// any sum holding it is 0.
+inline constexpr float kLogOfZero = -1000.0f;
+glm::vec3 log_transmittance(const Material& material);
 
 // The light in the object's own space (the inverse of its transform, in double), where its
 // volume is built whether on the CPU or in a geometry shader.

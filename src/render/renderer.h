@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "core/expected.h"
 #include "core/volume.h"
 #include "scene/scene.h"
@@ -83,13 +85,30 @@ struct FrameStats {
   soft::Counters depth, counts;
 };
 
-// What a frame leaves behind besides the picture: what each pixel shows, and per light whether
-// it is lit. The verifier compares these against the ray-traced reference.
-struct Frame {
-  Image image;
-  std::vector<std::int32_t> object;  // per pixel: index into scene.objects, -1 for background
+// One layer of surfaces: what each pixel shows in it, and per light how much of the light
+// reaches it there.
+struct SurfaceLayer {
+  std::vector<std::int32_t> object;  // per pixel: index into scene.objects, -1 for none
   std::vector<std::uint32_t> face;   // per pixel: face of that object
-  std::vector<std::vector<std::uint8_t>> shadowed;  // per light, per pixel: count != 0
+  // Per light, per pixel: the opaque casters' count != 0 (transparent casters never shadow
+  // fully; they are in `transmitted`).
+  std::vector<std::vector<std::uint8_t>> shadowed;
+  // Scenes with transparent casters only, else empty: per light, per pixel, the fraction of the
+  // light (linear RGB, per channel) that reaches the surface, the product of the transmittances
+  // of the transparent surfaces between them (Kim, Kim & Turk 2008 §2); 0 where shadowed.
+  std::vector<std::vector<glm::vec3>> transmitted;
+};
+
+// What a frame leaves behind besides the picture: what each pixel shows, and per light whether
+// it is lit. The verifier compares these against the ray-traced reference. The layer the frame
+// is (object, face, shadowed, transmitted) holds the opaque surfaces: transparent casters are
+// seen through, so they are not in it.
+struct Frame : SurfaceLayer {
+  Image image;
+  // Scenes with transparent casters, else empty: the nearest transparent surface in front of the
+  // opaque one (object -1 where none), and the light its other layers and the other casters let
+  // reach it (the paper's partial self-shadowing, §4-5).
+  SurfaceLayer glass;
   FrameStats stats;
   // RenderOptions::tile_work, software backend: per 8x8 tile (soft::kTileSize), row-major, the
   // count passes' work over all lights; else empty.

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include <tbb/parallel_for.h>
+#include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -45,6 +46,109 @@ void clip_volume(const PrimitiveList& list, int corners, const glm::mat4& mvp, i
 
 }  // namespace
 
+// What the passes of one frame share.
+struct SoftRenderer::Pass {
+  const Scene& scene;
+  const RenderOptions& options;
+  const FramePlan& plan;
+  Frame& frame;
+  // RenderOptions::tile_work_per_object: the frame's total (the target's tile work moves into it
+  // and into the object's share after each volume).
+  std::vector<soft::TileWork>* total_work;
+};
+
+void SoftRenderer::count_volume(const Pass& pass, std::size_t l, std::size_t o) {
+  const FramePlan& plan = pass.plan;
+  FrameStats& stats = pass.frame.stats;
+  const VolumeBuffer& v = volumes_.volume(l, o);
+  const std::optional<glm::vec4>& split = plan.split[l][o];
+  stats.volume_primitives += v.primitive_count();
+  const glm::mat4 mvp = plan.view_proj * plan.model[o];
+  const int sign = plan.weight_sign[o];
+  tris_.clear();
+  weights_.clear();
+  // First what counts in every tile: the sides, and a transparent caster's light caps; then the
+  // caps that count only where z-fail does.
+  clip_volume(v.sides, kQuadCorners, mvp, sign, tris_, weights_);
+  const bool glass = plan.counts_light_caps_everywhere(o);
+  if (glass) clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris_, weights_);
+  const std::size_t everywhere = weights_.size();
+  if (plan.counts_caps(l, o)) {
+    if (!glass) clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris_, weights_);
+    clip_volume(v.dark_caps, kTriangleCorners, mvp, sign, tris_, weights_);
+  }
+  // Depth bounds: the volume's range of window depths (a triangle's depth is affine on the
+  // screen, so its range is its vertices'; one before the near plane stands for the point where
+  // the triangle crosses it, at depth 1). Bounded volumes end short of depth 0.
+  soft::DepthBounds bounds{1.0f, 0.0f};
+  for (const glm::vec4& c : tris_) {
+    const float depth = c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w;
+    bounds.zmin = std::min(bounds.zmin, depth);
+    bounds.zmax = std::max(bounds.zmax, depth);
+  }
+  // Pre-filled z-pass starts inside the volume: a pixel beyond all of it must still count its
+  // way out, so no far bound.
+  if (plan.prefill[l][o]) bounds.zmin = 0.0f;
+  const std::span<const glm::vec4> all_tris(tris_);
+  const std::span<const std::int32_t> all_weights(weights_);
+  if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
+    prefill_tris_.clear();
+    prefill_weights_.clear();
+    append_near_plane_prefill(v.light_caps, plan.model[o], sign, plan.lights[l], plan.view_proj,
+                              prefill_tris_, prefill_weights_);
+    soft::draw_counts(target_, prefill_tris_, prefill_weights_, soft::CountRule::prefill,
+                      stats.counts, {},
+                      {split.value_or(glm::vec4(0.0f)),
+                       split ? soft::SplitTiles::zpass_only : soft::SplitTiles::all});
+  }
+  if (split) {
+    // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
+    soft::draw_counts(target_, all_tris.first(3 * everywhere), all_weights.first(everywhere),
+                      soft::CountRule::split, stats.counts, bounds, {*split});
+    soft::draw_counts(target_, all_tris.subspan(3 * everywhere), all_weights.subspan(everywhere),
+                      soft::CountRule::split, stats.counts, bounds,
+                      {*split, soft::SplitTiles::zfail_only});
+  } else {
+    soft::draw_counts(target_, all_tris, all_weights,
+                      plan.zfail[l][o] ? soft::CountRule::zfail : soft::CountRule::zpass,
+                      stats.counts, bounds);
+  }
+  if (pass.total_work != nullptr) {  // bookkeeping, left out of the count passes' time
+    const auto bookkeeping = Clock::now();
+    for (std::size_t t = 0; t < pass.total_work->size(); ++t) {
+      soft::TileWork& work = target_.tile_work[t];
+      for (soft::TileWork* sum : {&pass.frame.object_tile_work[o][t], &(*pass.total_work)[t]}) {
+        sum->pixels_processed += work.pixels_processed;
+        sum->pixels_updated += work.pixels_updated;
+      }
+      work = {};
+    }
+    stats.ms_counts -= ms_since(bookkeeping);
+  }
+}
+
+void SoftRenderer::light_layer(const Pass& pass, std::size_t l, SurfaceLayer& layer) {
+  const FramePlan& plan = pass.plan;
+  const std::size_t objects = pass.scene.objects.size();
+  auto start = Clock::now();
+  for (std::size_t o = 0; o < objects; ++o)
+    if (plan.glass_group[o] < 0) count_volume(pass, l, o);
+  target_.take_nonzero_counts(layer.shadowed[l]);
+  if (!plan.glass_log_transmittance.empty()) {
+    log_light_.assign(target_.count.size(), glm::vec3(0.0f));
+    for (std::size_t g = 0; g < plan.glass_log_transmittance.size(); ++g) {
+      for (std::size_t o = 0; o < objects; ++o)
+        if (plan.glass_group[o] == static_cast<int>(g)) count_volume(pass, l, o);
+      target_.take_counts_into(log_light_, plan.glass_log_transmittance[g]);
+    }
+    std::vector<glm::vec3>& light = layer.transmitted[l];
+    tbb::parallel_for(std::size_t{0}, light.size(), [&](std::size_t p) {
+      light[p] = layer.shadowed[l][p] ? glm::vec3(0.0f) : glm::exp(log_light_[p]);
+    });
+  }
+  pass.frame.stats.ms_counts += ms_since(start);
+}
+
 Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
   assert(check_options(options).ok());
   const int w = options.width, h = options.height;
@@ -53,112 +157,60 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
   Frame frame;
   FrameStats& stats = frame.stats;
   const FramePlan plan = plan_frame(scene, options, stats);
+  const bool glass = !plan.glass_log_transmittance.empty();
+  const std::size_t lights = scene.lights.size();
 
-  // --- depth pass: ids are (first face id of the object) + face ---
-  auto start = Clock::now();
-  target_.clear_depth();
-  target_.tile_work.assign(options.tile_work ? target_.tile_depth.size() : 0, soft::TileWork{});
-  std::vector<glm::vec4> tris;
-  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-    const SceneObject& object = scene.objects[o];
-    clip_triangles(object, plan.view_proj * plan.model[o], tris);
-    soft::draw_depth(target_, tris, plan.first_id[o], stats.depth);
-    stats.triangles += object.mesh->triangle_count();
-  }
-  target_.update_tile_depth();
-  frame.object.assign(pixels, -1);
-  frame.face.assign(pixels, 0);
-  for (std::size_t p = 0; p < pixels; ++p)
-    if (target_.id[p] != soft::Target::kNoId)
-      std::tie(frame.object[p], frame.face[p]) = plan.object_of(target_.id[p]);
-  stats.ms_depth = ms_since(start);
-
-  // --- per light: volumes, counts ---
-  frame.shadowed.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
   // Per object, the tile work moves out of the target after each volume, into the object's
-  // share and the frame's total; that bookkeeping is left out of the count passes' time.
+  // share and the frame's total.
+  target_.tile_work.assign(options.tile_work ? target_.tile_depth.size() : 0, soft::TileWork{});
   const bool per_object = options.tile_work && options.tile_work_per_object;
   std::vector<soft::TileWork> total_work(per_object ? target_.tile_work.size() : 0);
   if (per_object)
     frame.object_tile_work.assign(scene.objects.size(),
                                   std::vector<soft::TileWork>(target_.tile_work.size()));
-  for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-    start = Clock::now();
-    volumes_.update(scene, plan, l, options.generator, stats);
-    stats.ms_volumes += ms_since(start);
+  const Pass pass{scene, options, plan, frame, per_object ? &total_work : nullptr};
 
-    start = Clock::now();
-    std::vector<std::int32_t> weights, prefill_weights;
-    std::vector<glm::vec4> prefill_tris;
+  // A layer: the depth pass of the objects `in_layer` takes, over the depth buffer as it stands
+  // (ids are (first face id of the object) + face), then per light its shadows.
+  std::vector<glm::vec4> tris;
+  auto draw_layer = [&](SurfaceLayer& layer, bool clear, auto in_layer) {
+    auto start = Clock::now();
+    if (clear) target_.clear_depth();
+    std::fill(target_.id.begin(), target_.id.end(), soft::Target::kNoId);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-      const VolumeBuffer& v = volumes_.volume(l, o);
-      const std::optional<glm::vec4>& split = plan.split[l][o];
-      stats.volume_primitives += v.primitive_count();
-      const glm::mat4 mvp = plan.view_proj * plan.model[o];
-      tris.clear();
-      weights.clear();
-      clip_volume(v.sides, kQuadCorners, mvp, plan.weight_sign[o], tris, weights);
-      const std::size_t sides = weights.size();
-      if (plan.counts_caps(l, o)) {
-        clip_volume(v.light_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
-        clip_volume(v.dark_caps, kTriangleCorners, mvp, plan.weight_sign[o], tris, weights);
-      }
-      // Depth bounds: the volume's range of window depths (a triangle's depth is affine on the
-      // screen, so its range is its vertices'; one before the near plane stands for the point
-      // where the triangle crosses it, at depth 1). Bounded volumes end short of depth 0.
-      soft::DepthBounds bounds{1.0f, 0.0f};
-      for (const glm::vec4& c : tris) {
-        const float depth = c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w;
-        bounds.zmin = std::min(bounds.zmin, depth);
-        bounds.zmax = std::max(bounds.zmax, depth);
-      }
-      // Pre-filled z-pass starts inside the volume: a pixel beyond all of it must still count
-      // its way out, so no far bound.
-      if (plan.prefill[l][o]) bounds.zmin = 0.0f;
-      const std::span<const glm::vec4> all_tris(tris);
-      const std::span<const std::int32_t> all_weights(weights);
-      if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
-        prefill_tris.clear();
-        prefill_weights.clear();
-        append_near_plane_prefill(v.light_caps, plan.model[o], plan.weight_sign[o], plan.lights[l],
-                                  plan.view_proj, prefill_tris, prefill_weights);
-        soft::draw_counts(target_, prefill_tris, prefill_weights, soft::CountRule::prefill,
-                          stats.counts, {},
-                          {split.value_or(glm::vec4(0.0f)),
-                           split ? soft::SplitTiles::zpass_only : soft::SplitTiles::all});
-      }
-      if (split) {
-        // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
-        soft::draw_counts(target_, all_tris.first(3 * sides), all_weights.first(sides),
-                          soft::CountRule::split, stats.counts, bounds, {*split});
-        soft::draw_counts(target_, all_tris.subspan(3 * sides), all_weights.subspan(sides),
-                          soft::CountRule::split, stats.counts, bounds,
-                          {*split, soft::SplitTiles::zfail_only});
-      } else {
-        soft::draw_counts(target_, all_tris, all_weights,
-                          plan.zfail[l][o] ? soft::CountRule::zfail : soft::CountRule::zpass,
-                          stats.counts, bounds);
-      }
-      if (per_object) {
-        const auto bookkeeping = Clock::now();
-        for (std::size_t t = 0; t < total_work.size(); ++t) {
-          soft::TileWork& work = target_.tile_work[t];
-          for (soft::TileWork* sum : {&frame.object_tile_work[o][t], &total_work[t]}) {
-            sum->pixels_processed += work.pixels_processed;
-            sum->pixels_updated += work.pixels_updated;
-          }
-          work = {};
-        }
-        start += Clock::now() - bookkeeping;
-      }
+      if (!in_layer(scene.objects[o])) continue;
+      const SceneObject& object = scene.objects[o];
+      clip_triangles(object, plan.view_proj * plan.model[o], tris);
+      soft::draw_depth(target_, tris, plan.first_id[o], stats.depth);
+      stats.triangles += object.mesh->triangle_count();
     }
-    target_.take_nonzero_counts(frame.shadowed[l]);
-    stats.ms_counts += ms_since(start);
+    target_.update_tile_depth();
+    layer.object.assign(pixels, -1);
+    layer.face.assign(pixels, 0);
+    for (std::size_t p = 0; p < pixels; ++p)
+      if (target_.id[p] != soft::Target::kNoId)
+        std::tie(layer.object[p], layer.face[p]) = plan.object_of(target_.id[p]);
+    stats.ms_depth += ms_since(start);
+    layer.shadowed.assign(lights, std::vector<std::uint8_t>(pixels, 0));
+    layer.transmitted.assign(glass ? lights : 0, std::vector<glm::vec3>(pixels));
+    for (std::size_t l = 0; l < lights; ++l) {
+      start = Clock::now();
+      volumes_.update(scene, plan, l, options.generator, stats);
+      stats.ms_volumes += ms_since(start);
+      light_layer(pass, l, layer);
+    }
+  };
+  draw_layer(frame, true, [](const SceneObject& o) { return !o.material.transparent(); });
+  std::vector<float> opaque_depth;
+  if (glass) {
+    opaque_depth = target_.depth;
+    draw_layer(frame.glass, false, [](const SceneObject& o) { return o.material.transparent(); });
   }
   frame.tile_work = std::move(per_object ? total_work : target_.tile_work);  // sized afresh
 
-  // --- shading: ambient everywhere, each light where it is not shadowed ---
-  start = Clock::now();
+  // --- shading: ambient everywhere, each light as much as reaches the surface; the glass
+  // layer over the opaque one, as a filter of its transmittance plus its own reflection ---
+  auto start = Clock::now();
   frame.image = {w, h, std::vector<std::uint8_t>(pixels * 4)};
   std::vector<std::vector<glm::vec3>> world(scene.objects.size());  // vertices, once per frame
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
@@ -168,39 +220,51 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
       world[o].push_back(glm::vec3(plan.model[o] * glm::vec4(p, 1.0f)));
   }
   const glm::dmat4 inv_vp(plan.inv_view_proj);
+  auto shade = [&](const SurfaceLayer& layer, std::span<const float> depth, int x, int y,
+                   std::size_t p) {
+    const auto o = static_cast<std::size_t>(layer.object[p]);
+    const SceneObject& object = scene.objects[o];
+    const std::uint32_t* f = &object.mesh->indices[3 * static_cast<std::size_t>(layer.face[p])];
+    const glm::vec3& a = world[o][f[0]];
+    glm::vec3 n = glm::cross(world[o][f[1]] - a, world[o][f[2]] - a);
+    const float len = glm::length(n);
+    n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+    const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0, double(depth[p]),
+                         1.0);
+    const glm::dvec4 at = inv_vp * ndc;
+    const glm::vec3 pos = glm::vec3(glm::dvec3(at) / at.w);
+    const glm::vec3 to_eye = glm::normalize(-pos);  // the eye is the origin
+    if (glm::dot(n, to_eye) < 0.0f) n = -n;         // two-sided: light the side we see
+    const glm::vec3 albedo = object.material.color;
+    glm::vec3 color = scene.ambient * albedo;
+    for (std::size_t l = 0; l < lights; ++l) {
+      if (layer.shadowed[l][p]) continue;
+      const SceneLight& light = scene.lights[l];
+      const glm::vec4 lp = plan.lights[l];
+      const glm::vec3 to_light =
+          glm::normalize(lp.w != 0.0f ? glm::vec3(lp) / lp.w - pos : glm::vec3(lp));
+      const float lambert = glm::dot(n, to_light);
+      if (lambert <= 0.0f) continue;
+      const float spec = std::pow(std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))),
+                                  shading::kShininess);
+      const glm::vec3 arriving =
+          layer.transmitted.empty() ? glm::vec3(1.0f) : layer.transmitted[l][p];
+      color += light.color * light.intensity * arriving *
+               (albedo * lambert + glm::vec3(shading::kSpecular * spec));
+    }
+    return color;
+  };
+  const std::span<const float> glass_depth(target_.depth);
+  const std::span<const float> surface_depth =
+      glass ? std::span<const float>(opaque_depth) : glass_depth;
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * w + x;
-      glm::vec3 color = shading::background(y, h);
-      if (frame.object[p] >= 0) {
-        const auto o = static_cast<std::size_t>(frame.object[p]);
-        const SceneObject& object = scene.objects[o];
-        const std::uint32_t* f = &object.mesh->indices[3 * static_cast<std::size_t>(frame.face[p])];
-        const glm::vec3& a = world[o][f[0]];
-        glm::vec3 n = glm::cross(world[o][f[1]] - a, world[o][f[2]] - a);
-        const float len = glm::length(n);
-        n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
-        const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0,
-                             double(target_.depth[p]), 1.0);
-        const glm::dvec4 at = inv_vp * ndc;
-        const glm::vec3 pos = glm::vec3(glm::dvec3(at) / at.w);
-        const glm::vec3 to_eye = glm::normalize(-pos);  // the eye is the origin
-        if (glm::dot(n, to_eye) < 0.0f) n = -n;         // two-sided: light the side we see
-        const glm::vec3 albedo = object.material.color;
-        color = scene.ambient * albedo;
-        for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-          if (frame.shadowed[l][p]) continue;
-          const SceneLight& light = scene.lights[l];
-          const glm::vec4 lp = plan.lights[l];
-          const glm::vec3 to_light =
-              glm::normalize(lp.w != 0.0f ? glm::vec3(lp) / lp.w - pos : glm::vec3(lp));
-          const float lambert = glm::dot(n, to_light);
-          if (lambert <= 0.0f) continue;
-          const float spec = std::pow(
-              std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))), shading::kShininess);
-          color += light.color * light.intensity *
-                   (albedo * lambert + glm::vec3(shading::kSpecular * spec));
-        }
+      glm::vec3 color =
+          frame.object[p] >= 0 ? shade(frame, surface_depth, x, y, p) : shading::background(y, h);
+      if (glass && frame.glass.object[p] >= 0) {
+        const Material& m = scene.objects[static_cast<std::size_t>(frame.glass.object[p])].material;
+        color = color * m.transmittance() + m.opacity * shade(frame.glass, glass_depth, x, y, p);
       }
       for (int k = 0; k < 3; ++k)
         frame.image.rgba[4 * p + k] =

@@ -3,6 +3,13 @@
 // Owns: the passes on src/soft's rasterizer (depth with face ids, then per light: volumes from
 // the cache, counts by z-pass or z-fail, and shading where the count is 0), threads from oneTBB.
 // Deterministic: the same frame at any thread count.
+//
+// Transparent casters (Kim, Kim & Turk 2008): the opaque surfaces make the first layer; per
+// light, the opaque casters' counts give its shadow mask, and each group of transparent casters
+// of one material is counted on its own (exact integer surface counts, light caps included) and
+// added into a float32 log light intensity map as count * log(transmittance); the light that
+// arrives is exp of the map. The nearest transparent surface in front makes a second layer, lit
+// the same way (partial self-shadowing), and is blended over the first.
 #pragma once
 
 #include "render/frame_plan.h"
@@ -18,8 +25,18 @@ class SoftRenderer final : public Renderer {
   std::string_view backend() const override { return "soft"; }
 
  private:
+  struct Pass;
+  // Per light, the layer's shadow mask (and, with transparent casters, its transmitted light)
+  // against the depth buffer as it stands.
+  void light_layer(const Pass& pass, std::size_t light, SurfaceLayer& layer);
+  // Adds the counts of object o's volume for this light into the target.
+  void count_volume(const Pass& pass, std::size_t light, std::size_t o);
+
   VolumeCache volumes_;
   soft::Target target_;
+  std::vector<glm::vec4> tris_, prefill_tris_;  // kept between frames: no reallocation
+  std::vector<std::int32_t> weights_, prefill_weights_;
+  std::vector<glm::vec3> log_light_;
 };
 
 }  // namespace shadowvol

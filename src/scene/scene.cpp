@@ -71,10 +71,15 @@ Expected<SplitPlaneChoice> parse_split_plane_choice(std::string_view name) {
 }
 
 SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
-                        const glm::vec3& color) {
+                        const Material& material) {
   auto shared = std::make_shared<const Mesh>(std::move(mesh));
   auto topology = std::make_shared<const Topology>(build_topology(*shared));
-  return {std::move(name), std::move(shared), std::move(topology), transform, {color}, {}};
+  return {std::move(name), std::move(shared), std::move(topology), transform, material, {}};
+}
+
+bool has_transparent_casters(const Scene& scene) {
+  return std::any_of(scene.objects.begin(), scene.objects.end(),
+                     [](const SceneObject& o) { return o.material.transparent(); });
 }
 
 namespace {
@@ -219,6 +224,36 @@ Scene nonmanifold() {
   return s;
 }
 
+// Kim, Kim & Turk 2008's transparent casters: closed, open and non-manifold, in colours that
+// overlap (red over blue and green, amber over the rest), one opaque caster among them, on a
+// white ground that shows the coloured light, under two lights.
+Scene glass() {
+  Scene s;
+  s.name = "glass";
+  s.objects.push_back(
+      make_object("ground", make_ground(6.0f), glm::mat4(1.0f), {0.85f, 0.85f, 0.83f}));
+  s.objects.push_back(make_object("ruby_ball", make_sphere(glm::vec3(0.0f), 0.65f, 24, 48),
+                                  place({0.7f, 2.0f, -1.4f}), {{1.0f, 0.2f, 0.15f}, 0.45f}));
+  s.objects.push_back(make_object("sapphire_box", make_box(glm::vec3(-0.5f), glm::vec3(0.5f)),
+                                  place({0.2f, 0.9f, -0.3f}, 35.0f), {{0.2f, 0.45f, 1.0f}, 0.4f}));
+  s.objects.push_back(make_object("emerald_cup",  // open: a box without its top
+                                  make_box({-0.55f, -0.55f, -0.4f}, {0.55f, 0.55f, 0.4f}, false),
+                                  place({1.5f, 1.1f, 0.7f}, -20.0f) * kZUp,
+                                  {{0.25f, 1.0f, 0.35f}, 0.5f}));
+  s.objects.push_back(make_object("amber_book",  // non-manifold: four pages on one spine
+                                  book(), place({-1.4f, 1.9f, -0.2f}, 25.0f, glm::vec3(1.1f)),
+                                  {{1.0f, 0.75f, 0.2f}, 0.55f}));
+  s.objects.push_back(make_object("stone_torus", make_bumpy_torus(64, 24, 0.6f, 0.2f),
+                                  place({-2.4f, 0.45f, -1.3f}, 30.0f) * kZUp,
+                                  {0.55f, 0.55f, 0.6f}));
+  // The main light behind the casters, so that their shadows fall towards the eye.
+  s.lights.push_back({{1.5f, 6.0f, -3.5f, 1.0f}, {1.0f, 0.97f, 0.9f}, 0.8f});
+  s.lights.push_back({{-4.5f, 5.5f, 2.5f, 1.0f}, {0.85f, 0.9f, 1.0f}, 0.25f});
+  s.ambient = glm::vec3(0.1f);
+  s.camera = {{0.0f, 4.6f, 8.2f}, {0.0f, 0.7f, -0.2f}};
+  return s;
+}
+
 // Laine 2005's test scenes, in their spirit (Table 1): a light circling overhead, frame by
 // frame, and the casters turning, so that `bench --frames N` sees an animation.
 constexpr SceneLight kCirclingLight = {{3.5f, 6.0f, 2.5f, 1.0f}, {1.0f, 0.97f, 0.9f}, 1.0f, 4.0f};
@@ -290,6 +325,7 @@ constexpr Builtin kBuiltins[] = {{"demo", demo},
                                  {"light-in-view", light_in_view},
                                  {"directional", directional},
                                  {"nonmanifold", nonmanifold},
+                                 {"glass", glass},
                                  {"knight", knight},
                                  {"knights16", knights16},
                                  {"tree", tree_whole},

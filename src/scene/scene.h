@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -20,8 +21,17 @@
 
 namespace shadowvol {
 
+// A surface's colour and opacity. An opaque surface (opacity 1) blocks a light; a transparent one
+// (opacity < 1) passes the fraction (1 - opacity) * color of it, per channel, and a light crossing
+// n such surfaces keeps that fraction to the power n (Kim, Kim & Turk 2008 §2): a colored,
+// partial shadow. Casters of one material form one group, counted together.
 struct Material {
-  glm::vec3 color{0.8f};  // linear RGB albedo
+  glm::vec3 color{0.8f};  // linear RGB albedo, and the filter colour of a transparent surface
+  float opacity = 1.0f;   // in [0, 1]
+
+  bool transparent() const { return opacity < 1.0f; }
+  glm::vec3 transmittance() const { return (1.0f - opacity) * color; }
+  bool operator==(const Material&) const = default;
 };
 
 // Motion per frame: frame f spins the object by f * degrees_per_frame about `spin_axis` (in its
@@ -102,7 +112,14 @@ Scene scene_at_frame(const Scene& scene, int frame);
 
 // An object from a mesh: builds its topology (welding exactly).
 SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
-                        const glm::vec3& color);
+                        const Material& material);
+inline SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
+                               const glm::vec3& color) {
+  return make_object(std::move(name), std::move(mesh), transform, Material{color});
+}
+
+// Whether any object of the scene is transparent (Material::transparent).
+bool has_transparent_casters(const Scene& scene);
 
 // The built-in scenes:
 //   demo              several objects, open and closed meshes, a ground plane, a point light;
@@ -111,6 +128,8 @@ SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
 //   light-in-view     a point light inside the view frustum, volumes crossing the near plane
 //   directional       the demo objects under a directional light
 //   nonmanifold       open, non-manifold, flipped-face, sliver and coincident-face casters
+//   glass             colored transparent casters (closed, open, non-manifold) overlapping, an
+//                     opaque one, a white ground and two lights: partial, colored shadows
 Expected<Scene> builtin_scene(std::string_view name);
 std::vector<std::string_view> builtin_scene_names();
 

@@ -6,6 +6,7 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/volume.h"
@@ -215,8 +216,8 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
     const json& o = root["objects"][i];
     const std::string p = "scene.objects[" + std::to_string(i) + "]";
     if (!r.keys(o, p,
-                {"name", "mesh", "shape", "transform", "color", "animation", "split_plane",
-                 "decompose"}))
+                {"name", "mesh", "shape", "transform", "color", "opacity", "animation",
+                 "split_plane", "decompose"}))
       return make_error(r.error);
     if (o.contains("mesh") == o.contains("shape"))
       return make_error(name + ": " + p +
@@ -239,13 +240,24 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
       return make_error(r.error);
     }
     glm::mat4 transform(1.0f);
-    glm::vec3 color(0.8f);
+    Material material;
     if (!r.optional(
             o, p, "transform",
             [&](const json& t, const std::string& q) { return r.transform(t, q, transform); }) ||
-        !r.optional(o, p, "color",
-                    [&](const json& c, const std::string& q) { return r.color(c, q, color); }))
+        !r.optional(
+            o, p, "color",
+            [&](const json& c, const std::string& q) { return r.color(c, q, material.color); }) ||
+        !r.optional(o, p, "opacity", [&](const json& c, const std::string& q) {
+          return r.number(c, q, material.opacity) &&
+                 (material.opacity >= 0.0f && material.opacity <= 1.0f
+                      ? true
+                      : r.fail(q, "must lie in [0, 1] (1 is opaque)"));
+        }))
       return make_error(r.error);
+    if (material.transparent() && glm::any(glm::greaterThan(material.color, glm::vec3(1.0f))))
+      return make_error(name + ": " + p +
+                        ".color: a transparent object's colour filters the light it passes, so "
+                        "each channel must lie in [0, 1]");
     Animation animation;
     if (!r.optional(o, p, "animation", [&](const json& a, const std::string& q) {
           return r.keys(a, q, {"spin", "degrees_per_frame", "move"}) &&
@@ -289,7 +301,7 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const std::string part_name =
           parts.size() > 1 ? object_name + "/" + std::to_string(k + 1) : object_name;
-      scene.objects.push_back(make_object(part_name, std::move(parts[k]), transform, color));
+      scene.objects.push_back(make_object(part_name, std::move(parts[k]), transform, material));
       scene.objects.back().animation = animation;
       scene.objects.back().split_plane = split_plane;
     }

@@ -91,9 +91,9 @@ struct Setup {
   bool front;          // counter-clockwise as the viewer sees it (OpenGL's front face)
   // Edge i runs v[i] -> v[(i + 1) % 3]; E_i(P) = dx_i (Py - y_i) - dy_i (Px - x_i), inside >= 0.
   std::int64_t dx[3], dy[3];
-  std::int64_t bias[3];  // 0 on top-left edges, -1 elsewhere: the top-left fill rule
-  double dzdx, dzdy;     // depth per pixel
-  double x_per_y[3];     // edge i's slope dx/dy, 0 for a horizontal edge
+  std::int64_t bias[3];       // 0 on top-left edges, -1 elsewhere: the top-left fill rule
+  double dzdx, dzdy;          // depth per pixel
+  double x_per_y[3];          // edge i's slope dx/dy, 0 for a horizontal edge
   std::int64_t min_y, max_y;  // subpixel rows of the bounding box: which bands it meets
 };
 
@@ -339,7 +339,10 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters, 
         const Floats z = (plane.z_tile + dzdy * j) + dz_lane;
         covered_count.add(covered);
         passed_count.add(row(static_cast<std::size_t>(y0 + j) * width + x0, covered,
-                             z < 0.0f ? 0.0f : z > 1.0f ? 1.0f : z, lanes, decided, rule));
+                             z < 0.0f   ? 0.0f
+                             : z > 1.0f ? 1.0f
+                                        : z,
+                             lanes, decided, rule));
       }
     };
     using No = std::false_type;
@@ -352,8 +355,8 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters, 
     else
       interior ? rows_of_tile(WholeRow{}, No{}, Yes{}) : rows_of_tile(WholeRow{}, No{}, No{});
     if (work != nullptr) {
-      work[tx].pixels_processed += static_cast<std::uint32_t>(
-          LaneCount{covered_count.sum - covered_before}.total());
+      work[tx].pixels_processed +=
+          static_cast<std::uint32_t>(LaneCount{covered_count.sum - covered_before}.total());
       work[tx].pixels_updated +=
           static_cast<std::uint32_t>(LaneCount{passed_count.sum - passed_before}.total());
     }
@@ -443,6 +446,18 @@ void Target::take_nonzero_counts(std::span<std::uint8_t> nonzero) {
   });
 }
 
+void Target::take_counts_into(std::span<glm::vec3> sum, const glm::vec3& per_count) {
+  assert(sum.size() == count.size());
+  tbb::parallel_for(0, tiles_y, [&](int band) {
+    const auto first = static_cast<std::size_t>(band) * kTileSize * width;
+    const auto end = std::min(count.size(), first + std::size_t{kTileSize} * width);
+    for (std::size_t p = first; p < end; ++p) {
+      if (count[p] != 0) sum[p] += static_cast<float>(count[p]) * per_count;
+      count[p] = 0;
+    }
+  });
+}
+
 void Target::update_tile_depth() {
   for (int ty = 0; ty < tiles_y; ++ty)
     for (int tx = 0; tx < tiles_x; ++tx) {
@@ -502,7 +517,9 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
     std::uint32_t* ids = target.id.data();
     raster(
         target, p.setup, band, c, nullptr,
-        [](int, int, float, float) { return TileDecision{TileVerdict::test, CountRule::zpass}; },
+        [](int, int, float, float) {
+          return TileDecision{TileVerdict::test, CountRule::zpass};
+        },
         [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
                          auto /*decided: never*/, CountRule) {
           const Floats stored = load_row<Floats>(depth + first, lanes);
@@ -574,26 +591,25 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     TileWork* work = target.tile_work.empty()
                          ? nullptr
                          : &target.tile_work[static_cast<std::size_t>(band) * target.tiles_x];
-    raster(target, p.setup, band, c, work, tile_test,
-           // By value: the stores into count may alias anything an int32 reference names.
-           [depth, count, bounds, front_delta](std::size_t first, const Mask& covered,
-                                               const Floats& z, auto lanes, auto decided,
-                                               CountRule tile_rule) {
-             const bool zpass = tile_rule != CountRule::zfail;  // prefill counts as z-pass does
-             const std::int32_t delta = zpass ? front_delta : -front_delta;
-             if constexpr (decided) {
-               store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
-                         lanes);
-               return covered;
-             }
-             const Floats stored = load_row<Floats>(depth + first, lanes);
-             const Mask in_front = z > stored;
-             const Mask pass = covered & (stored >= bounds.zmin) & (stored <= bounds.zmax) &
-                               (zpass ? in_front : ~in_front);
-             store_row(count + first, load_row<Mask>(count + first, lanes) + (pass & delta),
-                       lanes);
-             return pass;
-           });
+    raster(
+        target, p.setup, band, c, work, tile_test,
+        // By value: the stores into count may alias anything an int32 reference names.
+        [depth, count, bounds, front_delta](std::size_t first, const Mask& covered, const Floats& z,
+                                            auto lanes, auto decided, CountRule tile_rule) {
+          const bool zpass = tile_rule != CountRule::zfail;  // prefill counts as z-pass does
+          const std::int32_t delta = zpass ? front_delta : -front_delta;
+          if constexpr (decided) {
+            store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
+                      lanes);
+            return covered;
+          }
+          const Floats stored = load_row<Floats>(depth + first, lanes);
+          const Mask in_front = z > stored;
+          const Mask pass = covered & (stored >= bounds.zmin) & (stored <= bounds.zmax) &
+                            (zpass ? in_front : ~in_front);
+          store_row(count + first, load_row<Mask>(count + first, lanes) + (pass & delta), lanes);
+          return pass;
+        });
   });
   counters.count_updates += counters.pixels_passed - passed_before;  // every pass writes
 }

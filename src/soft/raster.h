@@ -29,6 +29,7 @@
 #include <span>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 namespace shadowvol::soft {
@@ -81,6 +82,9 @@ struct Target {
   // Writes count != 0 per pixel into `nonzero` (width * height bytes, 1 or 0) and leaves every
   // count zero: one sweep over the buffer instead of a read and a clear.
   void take_nonzero_counts(std::span<std::uint8_t> nonzero);
+  // Adds count * per_count per pixel into `sum` (width * height entries) and leaves every count
+  // zero: how a group of transparent casters' surface counts enter a light intensity map.
+  void take_counts_into(std::span<glm::vec3> sum, const glm::vec3& per_count);
   // Recomputes every tile's depth bounds from the depth buffer (after the depth pass).
   void update_tile_depth();
 

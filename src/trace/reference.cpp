@@ -1,9 +1,12 @@
 #include "trace/reference.h"
 
+#include <algorithm>
 #include <cmath>
+#include <compare>
 #include <limits>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include <embree3/rtcore.h>
 #include <glm/ext/matrix_transform.hpp>
@@ -31,7 +34,9 @@ std::string device_error(RTCDevice device) {
 // one Embree geometry per object (geometry id = object index).
 Expected<EmbreeScene> build(RTCDevice device, const Scene& scene) {
   EmbreeScene es(rtcNewScene(device));
-  rtcSetSceneFlags(es.get(), RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(es.get(), has_transparent_casters(scene)
+                                 ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION
+                                 : RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(es.get(), RTC_BUILD_QUALITY_HIGH);
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
@@ -63,6 +68,43 @@ Expected<EmbreeScene> build(RTCDevice device, const Scene& scene) {
   return es;
 }
 
+// The hits a ray's filter saw on transparent geometry. The context comes first, so that the
+// filter, which Embree hands the context, can find the rest (Embree's documented idiom).
+struct GlassContext {
+  RTCIntersectContext context;
+  const std::vector<std::uint8_t>* transparent;  // per geometry (object)
+  struct Hit {
+    unsigned geometry, primitive;
+    float t;
+    glm::vec3 normal;
+    auto operator<=>(const Hit& o) const {
+      return std::tie(geometry, primitive) <=> std::tie(o.geometry, o.primitive);
+    }
+    bool operator==(const Hit& o) const {
+      return geometry == o.geometry && primitive == o.primitive;
+    }
+  };
+  std::vector<Hit> hits;
+};
+
+// Records every candidate hit on a transparent geometry and rejects it, so that the ray goes on;
+// hits on opaque geometry are kept as Embree found them.
+void see_through_glass(const RTCFilterFunctionNArguments* args) {
+  auto* glass = reinterpret_cast<GlassContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned geometry = RTCHitN_geomID(args->hit, args->N, i);
+    if (!(*glass->transparent)[geometry]) continue;
+    glass->hits.push_back(
+        {geometry,
+         RTCHitN_primID(args->hit, args->N, i),
+         RTCRayN_tfar(args->ray, args->N, i),
+         {RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+          RTCHitN_Ng_z(args->hit, args->N, i)}});
+    args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 struct ReferenceTracer::State {
@@ -71,7 +113,10 @@ struct ReferenceTracer::State {
   int width = 0, height = 0;
   glm::dmat4 inv_view_proj{1.0};
   float near = 0.0f;
-  std::vector<glm::dvec4> lights;  // eye-relative
+  std::vector<glm::dvec4> lights;         // eye-relative
+  bool glass = false;                     // any transparent caster
+  std::vector<std::uint8_t> transparent;  // per object
+  std::vector<glm::dvec3> transmittance;  // per object
 };
 
 ReferenceTracer::ReferenceTracer(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -93,55 +138,104 @@ Expected<std::shared_ptr<const ReferenceTracer>> ReferenceTracer::create(const S
   state->near = scene.camera.near;
   for (const SceneLight& light : scene.lights)
     state->lights.emplace_back(eye_relative(light.position, scene.camera.position));
+  state->glass = has_transparent_casters(scene);
+  for (const SceneObject& object : scene.objects) {
+    state->transparent.push_back(object.material.transparent());
+    state->transmittance.emplace_back(object.material.transmittance());
+  }
   return std::shared_ptr<const ReferenceTracer>(new ReferenceTracer(std::move(state)));
 }
 
 ReferenceSample ReferenceTracer::sample(double x, double y) const {
   const State& s = *state_;
   ReferenceSample out;
-  out.faces_light.assign(s.lights.size(), 0);
-  out.shadowed.assign(s.lights.size(), 0);
+  const std::size_t lights = s.lights.size();
+  out.faces_light.assign(lights, 0);
+  out.shadowed.assign(lights, 0);
+  out.transmitted.assign(s.glass ? lights : 0, glm::vec3(0.0f));
   // The ray through NDC (x / w * 2 - 1, 1 - y / h * 2), from the eye (eye-relative space: the
   // origin) through that point of the near plane (depth 1).
-  const glm::dvec4 on_near = s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0,
-                                                          1.0 - y / s.height * 2.0, 1.0, 1.0);
+  const glm::dvec4 on_near =
+      s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0, 1.0 - y / s.height * 2.0, 1.0, 1.0);
   const glm::dvec3 dir = glm::normalize(glm::dvec3(on_near) / on_near.w);
   if (!std::isfinite(dir.x) || !std::isfinite(dir.y) || !std::isfinite(dir.z)) return out;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  GlassContext context{{}, &s.transparent, {}};
+  rtcInitIntersectContext(&context.context);
+  if (s.glass) context.context.filter = see_through_glass;
   RTCRayHit hit{};
   hit.ray.dir_x = float(dir.x), hit.ray.dir_y = float(dir.y), hit.ray.dir_z = float(dir.z);
   hit.ray.tnear = s.near;
   hit.ray.tfar = std::numeric_limits<float>::infinity();
   hit.ray.mask = 0xffffffffu;
   hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(s.scene.get(), &context, &hit);
-  if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
-  out.object = static_cast<std::int32_t>(hit.hit.geomID);
-  out.face = hit.hit.primID;
-  const glm::dvec3 pos = dir * double(hit.ray.tfar);
-  glm::dvec3 n = glm::normalize(glm::dvec3(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z));
-  if (glm::dot(n, dir) > 0.0) n = -n;  // the side the eye sees
-  for (std::size_t l = 0; l < s.lights.size(); ++l) {
-    const glm::dvec4& light = s.lights[l];
-    const glm::dvec3 to_light =
-        light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
-    const double distance =
-        light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
-    const glm::dvec3 d = glm::normalize(to_light);
-    if (glm::dot(n, d) <= 0.0) continue;  // faces away: not compared
-    out.faces_light[l] = 1;
-    // Start a hair off the surface, towards the light's side, to leave its own triangle.
-    const double scale = std::max(1.0, glm::length(pos));
-    const glm::dvec3 origin = pos + n * (1e-5 * scale);
-    RTCRay shadow{};
-    shadow.org_x = float(origin.x), shadow.org_y = float(origin.y), shadow.org_z = float(origin.z);
-    shadow.dir_x = float(d.x), shadow.dir_y = float(d.y), shadow.dir_z = float(d.z);
-    shadow.tnear = 0.0f;
-    shadow.tfar = std::isinf(distance) ? std::numeric_limits<float>::infinity() : float(distance);
-    shadow.mask = 0xffffffffu;
-    rtcOccluded1(s.scene.get(), &context, &shadow);
-    out.shadowed[l] = shadow.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+  rtcIntersect1(s.scene.get(), &context.context, &hit);
+  // Light at the point `pos` of a surface with normal n (turned towards the eye), per light:
+  // whether the surface faces it, whether an opaque surface blocks it, and (with transparent
+  // casters) the product of the transmittances of the transparent surfaces on the way.
+  auto light_surface = [&s](const glm::dvec3& pos, const glm::dvec3& n, ReferenceSurface& out) {
+    const std::size_t lights = s.lights.size();
+    out.faces_light.assign(lights, 0);
+    out.shadowed.assign(lights, 0);
+    out.transmitted.assign(s.glass ? lights : 0, glm::vec3(0.0f));
+    for (std::size_t l = 0; l < lights; ++l) {
+      const glm::dvec4& light = s.lights[l];
+      const glm::dvec3 to_light =
+          light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
+      const double distance =
+          light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
+      const glm::dvec3 d = glm::normalize(to_light);
+      if (glm::dot(n, d) <= 0.0) continue;  // faces away: not compared
+      out.faces_light[l] = 1;
+      // Start a hair off the surface, towards the light's side, to leave its own triangle.
+      const double scale = std::max(1.0, glm::length(pos));
+      const glm::dvec3 origin = pos + n * (1e-5 * scale);
+      RTCRay shadow{};
+      shadow.org_x = float(origin.x), shadow.org_y = float(origin.y),
+      shadow.org_z = float(origin.z);
+      shadow.dir_x = float(d.x), shadow.dir_y = float(d.y), shadow.dir_z = float(d.z);
+      shadow.tnear = 0.0f;
+      shadow.tfar = std::isinf(distance) ? std::numeric_limits<float>::infinity() : float(distance);
+      shadow.mask = 0xffffffffu;
+      GlassContext context{{}, &s.transparent, {}};
+      rtcInitIntersectContext(&context.context);
+      if (s.glass) context.context.filter = see_through_glass;
+      rtcOccluded1(s.scene.get(), &context.context, &shadow);
+      out.shadowed[l] = shadow.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+      if (!s.glass || out.shadowed[l]) continue;
+      // Each surface once: a filter may see one triangle more than once (spatial splits).
+      std::sort(context.hits.begin(), context.hits.end());
+      context.hits.erase(std::unique(context.hits.begin(), context.hits.end()), context.hits.end());
+      glm::dvec3 passed(1.0);
+      for (const GlassContext::Hit& hit : context.hits) passed *= s.transmittance[hit.geometry];
+      out.transmitted[l] = glm::vec3(passed);
+    }
+  };
+  // A surface at distance t along the ray, with geometric normal ng.
+  auto surface = [&](unsigned geometry, unsigned primitive, float t, const glm::vec3& ng,
+                     ReferenceSurface& layer) {
+    layer.object = static_cast<std::int32_t>(geometry);
+    layer.face = primitive;
+    const glm::dvec3 pos = dir * double(t);
+    glm::dvec3 n = glm::normalize(glm::dvec3(ng));
+    if (glm::dot(n, dir) > 0.0) n = -n;  // the side the eye sees
+    light_surface(pos, n, layer);
+  };
+  if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+    surface(hit.hit.geomID, hit.hit.primID, hit.ray.tfar,
+            {hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z}, out);
+  if (s.glass) {
+    out.glass.faces_light.assign(lights, 0);
+    out.glass.shadowed.assign(lights, 0);
+    out.glass.transmitted.assign(lights, glm::vec3(0.0f));
+    // The nearest transparent hit in front of the opaque one (ties: the lower ids, as the
+    // rasterizer's first-drawn-wins depth test keeps the first of equal depths).
+    const GlassContext::Hit* nearest = nullptr;
+    for (const GlassContext::Hit& h : context.hits)
+      if (h.t < hit.ray.tfar &&
+          (nearest == nullptr || h.t < nearest->t || (h.t == nearest->t && h < *nearest)))
+        nearest = &h;
+    if (nearest != nullptr)
+      surface(nearest->geometry, nearest->primitive, nearest->t, nearest->normal, out.glass);
   }
   return out;
 }
@@ -154,23 +248,34 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
   ReferenceFrame ref;
   ref.width = width, ref.height = height;
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  ref.object.assign(pixels, -1);
-  ref.face.assign(pixels, 0);
-  ref.faces_light.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
-  ref.shadowed.assign(scene.lights.size(), std::vector<std::uint8_t>(pixels, 0));
+  const std::size_t lights = scene.lights.size();
+  const bool glass = has_transparent_casters(scene);
+  auto size = [&](ReferenceLayer& layer) {
+    layer.object.assign(pixels, -1);
+    layer.face.assign(pixels, 0);
+    layer.faces_light.assign(lights, std::vector<std::uint8_t>(pixels, 0));
+    layer.shadowed.assign(lights, std::vector<std::uint8_t>(pixels, 0));
+    layer.transmitted.assign(glass ? lights : 0, std::vector<glm::vec3>(pixels));
+  };
+  auto put = [&](ReferenceLayer& layer, std::size_t p, const ReferenceSurface& s) {
+    layer.object[p] = s.object;
+    layer.face[p] = s.face;
+    for (std::size_t l = 0; l < lights; ++l) {
+      layer.faces_light[l][p] = s.faces_light[l];
+      layer.shadowed[l][p] = s.shadowed[l];
+      if (glass) layer.transmitted[l][p] = s.transmitted[l];
+    }
+  };
+  size(ref);
+  if (glass) size(ref.glass);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * width + x;
       const ReferenceSample s = (*tracer)->sample(x + 0.5, y + 0.5);
-      ref.object[p] = s.object;
-      ref.face[p] = s.face;
-      for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-        ref.faces_light[l][p] = s.faces_light[l];
-        ref.shadowed[l][p] = s.shadowed[l];
-      }
+      put(ref, p, s);
+      if (glass) put(ref.glass, p, s.glass);
     }
-  if (std::string e = (*tracer)->error(); !e.empty())
-    return make_error(e + " while tracing");
+  if (std::string e = (*tracer)->error(); !e.empty()) return make_error(e + " while tracing");
   ref.tracer = std::move(*tracer);
   return ref;
 }

@@ -4,6 +4,9 @@
 // Owns: an Embree device and scene built from the world-space triangles of a Scene, primary
 // rays through the same pixel centres the rasterizer samples (or any other point of the window),
 // and one shadow ray per visible point and light. Errors from Embree come back as values.
+// Transparent casters (Material::opacity < 1) are seen through, so a primary ray finds the
+// nearest opaque surface and, in front of it, the nearest transparent one; a shadow ray stops
+// at an opaque surface and multiplies the transmittances of all the transparent ones it crosses.
 #pragma once
 
 #include <cstdint>
@@ -18,13 +21,23 @@
 
 namespace shadowvol {
 
-// What the reference sees along one primary ray.
-struct ReferenceSample {
-  std::int32_t object = -1;  // scene object index, -1 for background
+// What the reference sees of one surface along one primary ray.
+struct ReferenceSurface {
+  std::int32_t object = -1;  // scene object index, -1 for none
   std::uint32_t face = 0;    // face of that object
   // Per light: whether the surface faces the light (its normal, turned towards the eye, points
-  // to the light's side), and whether the segment to the light crosses a surface.
+  // to the light's side), and whether the segment to the light crosses an opaque surface.
   std::vector<std::uint8_t> faces_light, shadowed;
+  // Scenes with transparent casters only: per light, the product of the transmittances of the
+  // transparent surfaces the segment crosses, each counted once (any-hit over all hits); 0 where
+  // shadowed.
+  std::vector<glm::vec3> transmitted;
+};
+
+// What the reference sees along one primary ray: the nearest opaque surface, and in front of it
+// the nearest transparent one (object -1 where none, or where the scene has none).
+struct ReferenceSample : ReferenceSurface {
+  ReferenceSurface glass;
 };
 
 // The scene built once for Embree, traced through a width x height window of scene.camera.
@@ -46,14 +59,20 @@ class ReferenceTracer {
   std::unique_ptr<State> state_;
 };
 
-struct ReferenceFrame {
+// One layer of a ReferenceFrame, per pixel what ReferenceSurface is per sample.
+struct ReferenceLayer {
+  std::vector<std::int32_t> object;                    // per pixel: scene object index, -1 for none
+  std::vector<std::uint32_t> face;                     // per pixel: face of that object
+  std::vector<std::vector<std::uint8_t>> faces_light;  // per light, per pixel: 1 or 0
+  std::vector<std::vector<std::uint8_t>> shadowed;     // per light, per pixel: 1 or 0
+  std::vector<std::vector<glm::vec3>> transmitted;     // per light, per pixel; or empty
+};
+
+// The opaque surfaces' layer, and with transparent casters the glass layer in front of it (as
+// Frame has them).
+struct ReferenceFrame : ReferenceLayer {
   int width = 0, height = 0;
-  std::vector<std::int32_t> object;  // per pixel: scene object index, -1 for background
-  std::vector<std::uint32_t> face;   // per pixel: face of that object
-  // Per light, per pixel: 1 if the visible surface faces the light (its normal, turned towards
-  // the eye, points to the light's side), and 1 if the segment to the light crosses a surface.
-  std::vector<std::vector<std::uint8_t>> faces_light;
-  std::vector<std::vector<std::uint8_t>> shadowed;
+  ReferenceLayer glass;  // empty when the scene has no transparent caster
   // The tracer that made the frame, for samples between pixel centres.
   std::shared_ptr<const ReferenceTracer> tracer;
 };

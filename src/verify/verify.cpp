@@ -3,35 +3,48 @@
 #include <algorithm>
 #include <cassert>
 
+#include <glm/common.hpp>
+
 namespace shadowvol {
 namespace {
 
-// Whether the reference changes, for light l, anywhere in the square between the centres of the
-// neighbours of pixel (x, y): it is sampled every 1 / kSteps pixel.
-bool boundary_between_centres(const ReferenceTracer& tracer, int x, int y, std::size_t l) {
+// How a layer's light differs from the reference's at pixel p for light l: the largest channel
+// difference (0 without transparent casters).
+float light_error(const std::vector<std::vector<glm::vec3>>& a,
+                  const std::vector<std::vector<glm::vec3>>& b, std::size_t l, std::size_t p) {
+  if (a.empty() || b.empty()) return 0.0f;
+  const glm::vec3 d = glm::abs(a[l][p] - b[l][p]);
+  return std::max({d.x, d.y, d.z});
+}
+
+// Whether the reference's layer changes, for light l, anywhere in the square between the
+// centres of the neighbours of pixel (x, y): it is sampled every 1 / kSteps pixel.
+template <class Pick>
+bool boundary_between_centres(const ReferenceTracer& tracer, int x, int y, std::size_t l,
+                              Pick pick) {
   constexpr int kSteps = 4;
   const auto at = [&](int i, int j) {
     return tracer.sample(x + 0.5 + double(i) / kSteps, y + 0.5 + double(j) / kSteps);
   };
-  const ReferenceSample first = at(-kSteps, -kSteps);
+  const ReferenceSample first_sample = at(-kSteps, -kSteps);
+  const ReferenceSurface& first = pick(first_sample);
   for (int j = -kSteps; j <= kSteps; ++j)
     for (int i = -kSteps; i <= kSteps; ++i) {
-      const ReferenceSample s = at(i, j);
+      const ReferenceSample sample = at(i, j);
+      const ReferenceSurface& s = pick(sample);
       if (s.object != first.object || s.shadowed[l] != first.shadowed[l] ||
-          s.faces_light[l] != first.faces_light[l])
+          s.faces_light[l] != first.faces_light[l] ||
+          (!s.transmitted.empty() && s.transmitted[l] != first.transmitted[l]))
         return true;
     }
   return false;
 }
 
-}  // namespace
-
-Comparison compare(const Frame& frame, const ReferenceFrame& ref) {
-  const int w = ref.width, h = ref.height;
-  const std::size_t pixels = static_cast<std::size_t>(w) * h;
-  assert(frame.object.size() == pixels && frame.shadowed.size() == ref.shadowed.size());
-  Comparison c;
-  c.verdict.assign(pixels, 0);
+// One layer of the frame against the same layer of the reference; `pick` takes that layer's
+// surface out of a reference sample.
+template <class Pick>
+void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, int h,
+                   const ReferenceTracer* tracer, Pick pick, Comparison& c) {
   for (std::size_t l = 0; l < ref.shadowed.size(); ++l) {
     const std::vector<std::uint8_t>& shadow = ref.shadowed[l];
     const std::vector<std::uint8_t>& facing = ref.faces_light[l];
@@ -40,25 +53,49 @@ Comparison compare(const Frame& frame, const ReferenceFrame& ref) {
         const std::size_t p = static_cast<std::size_t>(y) * w + x;
         if (ref.object[p] < 0 || !facing[p]) continue;
         ++c.pixels_compared;
-        const bool same = frame.object[p] == ref.object[p] && frame.shadowed[l][p] == shadow[p];
-        if (same) continue;
+        const bool same_surface = frame.object[p] == ref.object[p];
+        const float error =
+            same_surface ? light_error(frame.transmitted, ref.transmitted, l, p) : 0.0f;
+        c.max_light_error = std::max(c.max_light_error, error);
+        if (same_surface && frame.shadowed[l][p] == shadow[p] && error <= kLightTolerance) continue;
         ++c.mismatched;
-        // Within one pixel of a boundary of the reference: of its shadow, of the surfaces it
-        // sees (silhouettes), or of the part that faces the light.
+        // Within one pixel of a boundary of the reference: of its shadow or the light that
+        // reaches it, of the surfaces it sees (silhouettes), or of the part that faces the light.
         bool band = false;
         for (int dy = -1; dy <= 1 && !band; ++dy)
           for (int dx = -1; dx <= 1 && !band; ++dx) {
             const int qx = x + dx, qy = y + dy;
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             const std::size_t q = static_cast<std::size_t>(qy) * w + qx;
-            band =
-                ref.object[q] != ref.object[p] || shadow[q] != shadow[p] || facing[q] != facing[p];
+            band = ref.object[q] != ref.object[p] || shadow[q] != shadow[p] ||
+                   facing[q] != facing[p] ||
+                   (!ref.transmitted.empty() && ref.transmitted[l][q] != ref.transmitted[l][p]);
           }
-        if (!band && ref.tracer) band = boundary_between_centres(*ref.tracer, x, y, l);
+        if (!band && tracer != nullptr) band = boundary_between_centres(*tracer, x, y, l, pick);
         c.mismatched_outside_band += !band;
+        if (!band) c.max_light_error_outside_band = std::max(c.max_light_error_outside_band, error);
         c.verdict[p] = std::max<std::uint8_t>(c.verdict[p], band ? 1 : 2);
       }
   }
+}
+
+}  // namespace
+
+Comparison compare(const Frame& frame, const ReferenceFrame& ref) {
+  const int w = ref.width, h = ref.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  assert(frame.object.size() == pixels && frame.shadowed.size() == ref.shadowed.size());
+  assert(frame.glass.object.empty() == ref.glass.object.empty());
+  Comparison c;
+  c.verdict.assign(pixels, 0);
+  const ReferenceTracer* tracer = ref.tracer.get();
+  compare_layer(
+      frame, ref, w, h, tracer,
+      [](const ReferenceSample& s) -> const ReferenceSurface& { return s; }, c);
+  if (!ref.glass.object.empty())
+    compare_layer(
+        frame.glass, ref.glass, w, h, tracer,
+        [](const ReferenceSample& s) -> const ReferenceSurface& { return s.glass; }, c);
   return c;
 }
 

@@ -2,7 +2,9 @@
 //
 // Owns: the comparison that DESIGN.md's invariant is stated in. On every pixel whose surface
 // faces the light (in the reference), the rendered shadow mask must equal the reference's,
-// except within one pixel of a shadow or silhouette boundary of the reference.
+// except within one pixel of a shadow or silhouette boundary of the reference. With transparent
+// casters, so must the transmitted light (within kLightTolerance), on both layers: the opaque
+// surfaces, and the nearest transparent surface in front of them.
 //
 // "Within one pixel" is decided first from the reference at the pixel's eight neighbours. A
 // boundary can pass between pixel centres without changing any of them: a sliver of shadow or
@@ -21,10 +23,19 @@
 
 namespace shadowvol {
 
+// Transparent casters: light that reaches a surface may differ from the reference's by this much
+// (any channel, on the 0..1 scale) and still match, one step of an 8-bit image.
+inline constexpr float kLightTolerance = 1.0f / 255.0f;
+
 struct Comparison {
-  std::size_t pixels_compared = 0;          // over all lights
-  std::size_t mismatched = 0;               // different mask, or a different surface seen
+  std::size_t pixels_compared = 0;  // over all lights and layers
+  std::size_t mismatched = 0;       // different mask, a different surface seen, or different light
   std::size_t mismatched_outside_band = 0;  // of those, more than a pixel from any boundary
+  // Scenes with transparent casters (else 0): the largest difference of transmitted light from
+  // the reference's, any channel, over the compared pixels that see the surface the reference
+  // sees; over all of them, and over those outside the band.
+  float max_light_error = 0.0f;
+  float max_light_error_outside_band = 0.0f;
   // Per pixel, the worst over the lights: 0 agrees or not compared, 1 mismatch within the
   // band, 2 mismatch outside it.
   std::vector<std::uint8_t> verdict;

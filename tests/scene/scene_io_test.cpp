@@ -45,6 +45,20 @@ TEST(SceneFile, AnimationSpinsMovesAndOrbits) {
   EXPECT_EQ(scene_at_frame(*scene, 0).objects[0].transform, scene->objects[0].transform);
 }
 
+// "opacity": below 1, a transparent caster whose shadow passes (1 - opacity) * color.
+TEST(SceneFile, OpacityMakesATransparentCaster) {
+  const auto path = write_temp("glass", R"({
+    "camera": {"position": [0, 2, 5], "target": [0, 0, 0]},
+    "lights": [{"position": [4, 5, 0]}],
+    "objects": [{"shape": "box", "color": [1, 0.5, 0], "opacity": 0.25}, {"shape": "ground"}]})");
+  auto scene = load_scene_file(path);
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_TRUE(scene->objects[0].material.transparent());
+  EXPECT_EQ(scene->objects[0].material.transmittance(), glm::vec3(0.75f, 0.375f, 0.0f));
+  EXPECT_FALSE(scene->objects[1].material.transparent());
+  EXPECT_TRUE(has_transparent_casters(*scene));
+}
+
 // "decompose": each connected part its own object (Laine 2005 §6), vertices that a file repeats
 // per face joined by position: two faces written with six vertices are one part.
 TEST(SceneFile, DecomposeMakesAnObjectPerConnectedPart) {
@@ -137,7 +151,15 @@ INSTANTIATE_TEST_SUITE_P(
             "scene.objects[0].mesh: /nonexistent/x.obj: no such file"},
         Bad{"bad_color", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
               "lights": [{"position": [1,5,1]}], "objects": [{"shape": "box", "color": [1, -1, 0]}]})",
-            "scene.objects[0].color: a colour channel must lie in [0, 1000]"}),
+            "scene.objects[0].color: a colour channel must lie in [0, 1000]"},
+        Bad{"bad_opacity", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"shape": "box", "opacity": 1.5}]})",
+            "scene.objects[0].opacity: must lie in [0, 1] (1 is opaque)"},
+        Bad{"bright_glass", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}],
+              "objects": [{"shape": "box", "opacity": 0.5, "color": [2, 1, 1]}]})",
+            "scene.objects[0].color: a transparent object's colour filters the light it passes, "
+            "so each channel must lie in [0, 1]"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
