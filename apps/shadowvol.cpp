@@ -23,6 +23,7 @@
 #include "gl/context.h"
 #include "image_file.h"
 #include "render/heatmap.h"
+#include "render/light_map.h"
 #include "render/renderer.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
@@ -333,7 +334,8 @@ struct RenderArgs {
   bool stats = false;
   bool show_volumes = false;
   int frames = 1;
-  std::string heatmap;  // PNG of the count passes' work per tile; soft backend
+  std::string heatmap;    // PNG of the count passes' work per tile; soft backend
+  std::string light_map;  // PNG of the light that reaches each surface
 };
 
 int render(const RenderArgs& args) {
@@ -372,6 +374,14 @@ int render(const RenderArgs& args) {
         "wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
         "per pixel)\n",
         args.heatmap.c_str(), map.passes_at_top);
+  }
+  if (!args.light_map.empty()) {
+    if (auto ok = write_png(args.light_map,
+                            light_map_image(scene_at_frame(scene, args.frames - 1), frame));
+        !ok)
+      return fail(ok.error().message);
+    std::printf("wrote %s (the light that reaches each surface, all lights at full = white)\n",
+                args.light_map.c_str());
   }
   if (args.stats) {
     const FrameStats& s = frame.stats;
@@ -470,11 +480,18 @@ int view(const FrameArgs& frame, int frames, const std::string& screenshot) {
       {std::move(resolved->scene), resolved->options, resolved->gl, frames, screenshot});
 }
 
+// The scene with every caster made opaque: what transparency costs is measured against it.
+Scene all_opaque(Scene scene) {
+  for (SceneObject& object : scene.objects) object.material.opacity = 1.0f;
+  return scene;
+}
+
 // Frame times of scenes on one backend: the mean over `frames` frames after one warm-up frame
-// (which builds volumes and compiles shaders), per stage.
+// (which builds volumes and compiles shaders), per stage. A scene with transparent casters is
+// also drawn all opaque, frame for frame in turn, for the ratio of their frame times.
 int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int frames, bool json) {
   if (frames < 1) return fail("--frames: " + std::to_string(frames) + " is not a positive count");
-  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<Renderer> renderer, opaque_renderer;
   nlohmann::json out = nlohmann::json::array();
   StatusLine status;
   for (const std::string& name : scenes) {
@@ -488,18 +505,34 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
       renderer = std::move(*made);
     }
     const RenderOptions& options = resolved->options;
+    // The opaque twin on a renderer of its own, so that each keeps its volumes warm.
+    const bool glass = has_transparent_casters(resolved->scene);
+    const Scene opaque = all_opaque(resolved->scene);
+    if (glass && !opaque_renderer) {
+      auto made = make_renderer(resolved->backend, resolved->gl);
+      if (!made) return fail(made.error().message);
+      opaque_renderer = std::move(made->renderer);
+    }
+    auto timed = [&](Renderer& r, const Scene& scene, double& wall) {
+      const auto start = std::chrono::steady_clock::now();
+      Frame f = r.render(scene, options);
+      wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                  .count();
+      return f;
+    };
     FrameStats sum;
-    double wall = 0.0;
+    double wall = 0.0, opaque_wall = 0.0;
     for (int i = -1; i < frames; ++i) {
       status.show(resolved->scene.name + ": frame " + std::to_string(i + 2) + " of " +
                   std::to_string(frames + 1));
-      const auto start = std::chrono::steady_clock::now();
-      const Frame f = renderer->render(resolved->scene, options);
-      const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count();
-      if (i < 0) continue;  // warm-up
-      wall += ms;
+      if (i < 0) {  // warm-up
+        double ignored = 0.0;
+        timed(*renderer, resolved->scene, ignored);
+        if (glass) timed(*opaque_renderer, opaque, ignored);
+        continue;
+      }
+      const Frame f = timed(*renderer, resolved->scene, wall);
+      if (glass) timed(*opaque_renderer, opaque, opaque_wall);
       sum.ms_depth += f.stats.ms_depth;
       sum.ms_volumes += f.stats.ms_volumes;
       sum.ms_counts += f.stats.ms_counts;
@@ -525,6 +558,10 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
                        {"shade_ms", sum.ms_shade / n},
                        {"readback_ms", sum.ms_readback / n},
                        {"volume_primitives", sum.volume_primitives / frames}};
+    if (glass) {
+      row["all_opaque_frame_ms"] = opaque_wall / n;
+      row["transparent_over_opaque"] = wall / opaque_wall;
+    }
     if (renderer->backend() == "soft") {  // the rasterizer's work, per frame (gl has no counters)
       const soft::Counters& c = sum.counts;
       row["count_pass"] = {{"triangles", c.triangles_in / frames},
@@ -542,6 +579,10 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
           resolved->scene.name.c_str(), std::string(renderer->backend()).c_str(), options.width,
           options.height, wall / n, sum.ms_depth / n, sum.ms_volumes / n, sum.ms_counts / n,
           sum.ms_shade / n, sum.ms_readback / n);
+      if (glass)
+        std::printf("%-16s %s %dx%d: %7.2f ms a frame all opaque: transparency costs %.2fx\n", "",
+                    std::string(renderer->backend()).c_str(), options.width, options.height,
+                    opaque_wall / n, wall / opaque_wall);
     }
   }
   if (json) std::cout << out.dump(2) << "\n";
@@ -613,6 +654,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--heatmap", render_args.heatmap,
                          "Also write a PNG of the count passes' work per 8x8 tile: pixels "
                          "processed and pixels updated, over the scene (soft backend)");
+  render_cmd->add_option("--light-map", render_args.light_map,
+                         "Also write a PNG of the light intensity map: the light that reaches "
+                         "each surface through the casters (coloured where they are transparent)");
   render_cmd
       ->add_option("--frames", render_args.frames,
                    "Render frames 0 .. N-1 of the scene's animation; write the last")

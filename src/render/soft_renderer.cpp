@@ -191,8 +191,10 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
       if (target_.id[p] != soft::Target::kNoId)
         std::tie(layer.object[p], layer.face[p]) = plan.object_of(target_.id[p]);
     stats.ms_depth += ms_since(start);
-    layer.shadowed.assign(lights, std::vector<std::uint8_t>(pixels, 0));
-    layer.transmitted.assign(glass ? lights : 0, std::vector<glm::vec3>(pixels));
+    layer.shadowed.resize(lights);  // each sized in place: a copy would touch its pages twice
+    for (std::vector<std::uint8_t>& mask : layer.shadowed) mask.resize(pixels);
+    layer.transmitted.resize(glass ? lights : 0);
+    for (std::vector<glm::vec3>& light : layer.transmitted) light.resize(pixels);
     for (std::size_t l = 0; l < lights; ++l) {
       start = Clock::now();
       volumes_.update(scene, plan, l, options.generator, stats);
@@ -201,9 +203,8 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
     }
   };
   draw_layer(frame, true, [](const SceneObject& o) { return !o.material.transparent(); });
-  std::vector<float> opaque_depth;
   if (glass) {
-    opaque_depth = target_.depth;
+    opaque_depth_ = target_.depth;  // into storage kept between frames
     draw_layer(frame.glass, false, [](const SceneObject& o) { return o.material.transparent(); });
   }
   frame.tile_work = std::move(per_object ? total_work : target_.tile_work);  // sized afresh
@@ -256,7 +257,7 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
   };
   const std::span<const float> glass_depth(target_.depth);
   const std::span<const float> surface_depth =
-      glass ? std::span<const float>(opaque_depth) : glass_depth;
+      glass ? std::span<const float>(opaque_depth_) : glass_depth;
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * w + x;

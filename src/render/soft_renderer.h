@@ -37,6 +37,7 @@ class SoftRenderer final : public Renderer {
   std::vector<glm::vec4> tris_, prefill_tris_;  // kept between frames: no reallocation
   std::vector<std::int32_t> weights_, prefill_weights_;
   std::vector<glm::vec3> log_light_;
+  std::vector<float> opaque_depth_;  // with transparent casters: the opaque layer's depths
 };
 
 }  // namespace shadowvol

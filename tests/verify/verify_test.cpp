@@ -14,6 +14,7 @@
 
 #include "gl/backend.h"
 #include "render/frame_plan.h"
+#include "render/light_map.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
@@ -426,15 +427,16 @@ TEST(TransparentCasters, RedOverBlueGivesTheHandComputedLight) {
     const Frame frame = render(v, scene, options);
     const Frame unshadowed = render(v, bare, options);
     ASSERT_EQ(frame.transmitted.size(), 1u) << v.name;
+    const Image light_map = light_map_image(scene, frame);
     for (const Expected& e : expected) {
       const std::size_t p = pixel_of(e.x);
       ASSERT_EQ(frame.object[p], 0) << v.name << ", x = " << e.x;
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(frame.transmitted[0][p][c], e.light[c], 1e-5f) << v.name << ", x = " << e.x;
+      const auto srgb = [](float linear) {
+        return static_cast<int>(std::lround(shading::to_srgb(linear) * 255.0f));
+      };
       for (int c = 0; c < 3; ++c) {
-        const auto srgb = [](float linear) {
-          return static_cast<int>(std::lround(shading::to_srgb(linear) * 255.0f));
-        };
         // The same pixel unshadowed, back to linear; then as much of it as the light passes.
         const float lit =
             std::pow((unshadowed.image.rgba[4 * p + c] / 255.0f + 0.055f) / 1.055f, 2.4f);
@@ -443,6 +445,8 @@ TEST(TransparentCasters, RedOverBlueGivesTheHandComputedLight) {
         if (e.light[c] == 0.0f) {
           EXPECT_EQ(frame.image.rgba[4 * p + c], 0) << v.name;
         }
+        // The light intensity map's picture: the light alone, one white light at full.
+        EXPECT_EQ(light_map.rgba[4 * p + c], srgb(e.light[c])) << v.name << ", x = " << e.x;
       }
     }
   }
