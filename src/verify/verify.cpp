@@ -57,8 +57,6 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
         const float error =
             same_surface ? light_error(frame.transmitted, ref.transmitted, l, p) : 0.0f;
         c.max_light_error = std::max(c.max_light_error, error);
-        if (same_surface && frame.shadowed[l][p] == shadow[p] && error <= kLightTolerance) continue;
-        ++c.mismatched;
         // Within one pixel of a boundary of the reference: of its shadow or the light that
         // reaches it, of the surfaces it sees (silhouettes), or of the part that faces the light.
         bool band = false;
@@ -71,6 +69,14 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
                    facing[q] != facing[p] ||
                    (!ref.transmitted.empty() && ref.transmitted[l][q] != ref.transmitted[l][p]);
           }
+        const bool same =
+            same_surface && frame.shadowed[l][p] == shadow[p] && error <= kLightTolerance;
+        if (same) {
+          if (!band)
+            c.max_light_error_outside_band = std::max(c.max_light_error_outside_band, error);
+          continue;
+        }
+        ++c.mismatched;
         if (!band && tracer != nullptr) band = boundary_between_centres(*tracer, x, y, l, pick);
         c.mismatched_outside_band += !band;
         if (!band) c.max_light_error_outside_band = std::max(c.max_light_error_outside_band, error);

@@ -33,7 +33,8 @@ struct Comparison {
   std::size_t mismatched_outside_band = 0;  // of those, more than a pixel from any boundary
   // Scenes with transparent casters (else 0): the largest difference of transmitted light from
   // the reference's, any channel, over the compared pixels that see the surface the reference
-  // sees; over all of them, and over those outside the band.
+  // sees; over all of them, and over those outside the band (the reference even over the
+  // pixel's neighbours, and for a mismatch also between their centres).
   float max_light_error = 0.0f;
   float max_light_error_outside_band = 0.0f;
   // Per pixel, the worst over the lights: 0 agrees or not compared, 1 mismatch within the

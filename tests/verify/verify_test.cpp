@@ -452,6 +452,43 @@ TEST(TransparentCasters, RedOverBlueGivesTheHandComputedLight) {
   }
 }
 
+// Deep stacks: a light through twelve transparent sheets of six materials, some passing no blue
+// at all, and a closed transparent box among them. The log-space sums (soft: from exact counts;
+// gl: float32 blending, fragment by fragment) must stay far inside the 1/255 the reference
+// allows.
+TEST(TransparentCasters, TwelveLayersStayExact) {
+  Scene scene;
+  scene.name = "stack";
+  scene.camera = {{0.5f, 5.0f, 5.0f}, {0.0f, 0.0f, 0.0f}};
+  scene.objects.push_back(
+      make_object("ground", make_ground(4.0f), glm::mat4(1.0f), glm::vec3(0.9f)));
+  const Material materials[] = {{{1.0f, 0.8f, 0.0f}, 0.3f}, {{0.6f, 1.0f, 0.9f}, 0.2f},
+                                {{0.9f, 0.9f, 1.0f}, 0.1f}, {{1.0f, 0.5f, 0.5f}, 0.25f},
+                                {{0.7f, 0.9f, 0.0f}, 0.15f}, {{0.95f, 0.95f, 0.95f}, 0.05f}};
+  for (int i = 0; i < 12; ++i) {
+    Mesh sheet;
+    const float y = 1.0f + 0.12f * i, x0 = -1.6f + 0.1f * i, x1 = 1.2f - 0.05f * i;
+    sheet.positions = {{x0, y, -1.2f}, {x0, y, 1.0f}, {x1, y, 1.0f}, {x1, y, -1.2f}};
+    sheet.indices = {0, 1, 2, 0, 2, 3};
+    scene.objects.push_back(make_object("sheet" + std::to_string(i), std::move(sheet),
+                                        glm::mat4(1.0f), materials[i % 6]));
+  }
+  scene.objects.push_back(make_object("box", make_box(glm::vec3(-0.3f), glm::vec3(0.3f)),
+                                      glm::translate(glm::mat4(1.0f), {0.4f, 0.5f, 0.2f}),
+                                      Material{{0.5f, 0.7f, 1.0f}, 0.35f}));
+  scene.lights.push_back({{0.6f, 8.0f, 0.4f, 1.0f}});
+  auto reference = trace_reference(scene, kWidth, kHeight);
+  ASSERT_TRUE(reference.ok()) << reference.error().message;
+  for (const Variant& v : kVariants)
+    for (const Method method : {Method::zpass, Method::zfail}) {
+      const Frame frame = render(v, scene, {kWidth, kHeight, method, Generator::automatic});
+      const Comparison c = compare(frame, *reference);
+      EXPECT_GT(c.pixels_compared, std::size_t{kWidth * kHeight / 2});
+      EXPECT_EQ(c.mismatched_outside_band, 0u) << v.name << " " << to_string(method);
+      EXPECT_LT(c.max_light_error_outside_band, 1e-4f) << v.name << " " << to_string(method);
+    }
+}
+
 // The comparison sees a wrong light: a frame equal to the reference but for one pixel's light,
 // a tenth too dim, inside a coloured shadow and away from its edges, mismatches outside the band.
 TEST(TransparentCasters, CompareCatchesWrongLight) {
