@@ -289,6 +289,12 @@ Expected<std::unique_ptr<GlRenderer>> GlRenderer::create(GlSettings settings,
        {{GL_VERTEX_SHADER, kPassVertex},
         {GL_GEOMETRY_SHADER, kVolumeGeometry},
         {GL_FRAGMENT_SHADER, kCountFragment}}},
+      {&r->cover_,
+       "transparent surfaces in front",
+       {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kCoverFragment}}},
+      {&r->see_through_,
+       "seen through transparent surfaces",
+       {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kSeeThroughFragment}}},
       {&r->background_,
        "background",
        {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kBackgroundFragment}}},
@@ -726,8 +732,36 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
   for (std::size_t l = 0; l < lights; ++l) light_layer(pass, l, false, frame);
 
   if (glass) {
-    // --- the glass layer: the nearest transparent surface in front of the opaque one; what
-    // lies behind it is filtered by its transmittance, and its ambient term added ---
+    // --- what lies behind the transparent surfaces, seen through every one of them ---
+    start = Clock::now();
+    glBindFramebuffer(GL_FRAMEBUFFER, t.light.get());
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(t.light.get(), GL_COLOR, 0, zero);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDepthFunc(GL_GREATER);
+    glUseProgram(cover_.get());
+    draw_surfaces(pass, true, [&](std::size_t o) {
+      glUniform3fv(
+          glsl::kPerCount, 1,
+          glm::value_ptr(
+              plan.glass_log_transmittance[static_cast<std::size_t>(plan.glass_group[o])]));
+    });
+    glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+    glNamedFramebufferDrawBuffers(t.scene.get(), 2, colour_only);
+    glDisable(GL_DEPTH_TEST);
+    glBlendFunc(GL_ZERO, GL_SRC_COLOR);  // colour *= exp(log transmittance in front)
+    glUseProgram(see_through_.get());
+    glBindTextureUnit(1, t.log_light.get());
+    glBindVertexArray(empty_vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glFinish();
+    stats.ms_depth += ms_since(start);  // a surface pass, as the software backend counts it
+
+    // --- the glass layer: the nearest transparent surface in front of the opaque one, and its
+    // ambient term ---
     start = Clock::now();
     glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
     glNamedFramebufferDrawBuffers(t.scene.get(), 2, ids_only);
@@ -741,12 +775,6 @@ Frame GlRenderer::draw(const Scene& scene, const RenderOptions& options, bool re
     glEnable(GL_BLEND);
     glBindTextureUnit(2, t.ids.get());  // read, not written: attachment 0 is off
     glUniform1i(glsl::kVisibleOnly, GL_TRUE);
-    glBlendFunc(GL_ZERO, GL_SRC_COLOR);  // colour *= transmittance
-    glUniform3f(glsl::kAmbient, 1.0f, 1.0f, 1.0f);
-    draw_surfaces(pass, true, [&](std::size_t o) {
-      glUniform1ui(glsl::kFirstId, plan.first_id[o]);
-      glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.transmittance()));
-    });
     glBlendFunc(GL_ONE, GL_ONE);  // colour += opacity * ambient * albedo
     glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
     draw_surfaces(pass, true, [&](std::size_t o) {

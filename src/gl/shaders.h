@@ -261,6 +261,21 @@ void main() {
 }
 )";
 
+// Transparent surfaces between the eye and the opaque one: each adds its log transmittance
+// (per_count) into the log light target, whichever way it faces; then the colour target is
+// multiplied by exp of the sum (blended ZERO, SRC_COLOR): what is seen through all of them.
+inline constexpr const char* kCoverFragment = R"(#version 450 core
+layout(location = 19) uniform vec3 per_count;
+layout(location = 0) out vec4 count;
+void main() { count = vec4(per_count, 0.0); }
+)";
+
+inline constexpr const char* kSeeThroughFragment = R"(#version 450 core
+layout(binding = 1) uniform sampler2D log_light;
+layout(location = 1) out vec4 color;
+void main() { color = vec4(exp(texelFetch(log_light, ivec2(gl_FragCoord.xy), 0).rgb), 1.0); }
+)";
+
 // The background, first into the colour target, so that transparent surfaces filter it too.
 inline constexpr const char* kBackgroundFragment = R"(#version 450 core
 layout(location = 15) uniform vec3 background_top;

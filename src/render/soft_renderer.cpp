@@ -149,6 +149,23 @@ void SoftRenderer::light_layer(const Pass& pass, std::size_t l, SurfaceLayer& la
   pass.frame.stats.ms_counts += ms_since(start);
 }
 
+void SoftRenderer::filter_through_glass(const Pass& pass) {
+  const FramePlan& plan = pass.plan;
+  eye_log_.assign(target_.depth.size(), glm::vec3(0.0f));
+  std::vector<soft::TileWork> shadow_work;  // not a shadow pass: leave the tile work alone
+  std::swap(shadow_work, target_.tile_work);
+  for (std::size_t g = 0; g < plan.glass_log_transmittance.size(); ++g) {
+    for (std::size_t o = 0; o < pass.scene.objects.size(); ++o) {
+      if (plan.glass_group[o] != static_cast<int>(g)) continue;
+      clip_triangles(pass.scene.objects[o], plan.view_proj * plan.model[o], tris_);
+      weights_.assign(tris_.size() / 3, 1);
+      soft::draw_counts(target_, tris_, weights_, soft::CountRule::cover, pass.frame.stats.depth);
+    }
+    target_.take_counts_into(eye_log_, plan.glass_log_transmittance[g]);
+  }
+  std::swap(shadow_work, target_.tile_work);
+}
+
 Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
   assert(check_options(options).ok());
   const int w = options.width, h = options.height;
@@ -205,6 +222,9 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
   draw_layer(frame, true, [](const SceneObject& o) { return !o.material.transparent(); });
   if (glass) {
     opaque_depth_ = target_.depth;  // into storage kept between frames
+    auto start = Clock::now();
+    filter_through_glass(pass);
+    stats.ms_depth += ms_since(start);
     draw_layer(frame.glass, false, [](const SceneObject& o) { return o.material.transparent(); });
   }
   frame.tile_work = std::move(per_object ? total_work : target_.tile_work);  // sized afresh
@@ -263,9 +283,10 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
       const std::size_t p = static_cast<std::size_t>(y) * w + x;
       glm::vec3 color =
           frame.object[p] >= 0 ? shade(frame, surface_depth, x, y, p) : shading::background(y, h);
+      if (glass) color *= glm::exp(eye_log_[p]);  // through every transparent surface in front
       if (glass && frame.glass.object[p] >= 0) {
         const Material& m = scene.objects[static_cast<std::size_t>(frame.glass.object[p])].material;
-        color = color * m.transmittance() + m.opacity * shade(frame.glass, glass_depth, x, y, p);
+        color += m.opacity * shade(frame.glass, glass_depth, x, y, p);
       }
       for (int k = 0; k < 3; ++k)
         frame.image.rgba[4 * p + k] =

@@ -9,7 +9,9 @@
 // of one material is counted on its own (exact integer surface counts, light caps included) and
 // added into a float32 log light intensity map as count * log(transmittance); the light that
 // arrives is exp of the map. The nearest transparent surface in front makes a second layer, lit
-// the same way (partial self-shadowing), and is blended over the first.
+// the same way (partial self-shadowing). The picture is the first layer seen through every
+// transparent surface in front of it (counted per group the same way, along the eye's rays),
+// plus the nearest one's own reflection.
 #pragma once
 
 #include "render/frame_plan.h"
@@ -31,12 +33,16 @@ class SoftRenderer final : public Renderer {
   void light_layer(const Pass& pass, std::size_t light, SurfaceLayer& layer);
   // Adds the counts of object o's volume for this light into the target.
   void count_volume(const Pass& pass, std::size_t light, std::size_t o);
+  // With transparent casters: per pixel, the log of the fraction of what lies behind that the
+  // transparent surfaces in front of the opaque one let through to the eye (each surface once,
+  // whichever way it faces; against the opaque layer's depths), into eye_log_.
+  void filter_through_glass(const Pass& pass);
 
   VolumeCache volumes_;
   soft::Target target_;
   std::vector<glm::vec4> tris_, prefill_tris_;  // kept between frames: no reallocation
   std::vector<std::int32_t> weights_, prefill_weights_;
-  std::vector<glm::vec3> log_light_;
+  std::vector<glm::vec3> log_light_, eye_log_;
   std::vector<float> opaque_depth_;  // with transparent casters: the opaque layer's depths
 };
 

@@ -572,7 +572,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax)
       return TileDecision{TileVerdict::skip, tile_rule};
     const bool within_bounds = bounds.zmin <= tile.zmin && tile.zmax <= bounds.zmax;
-    const bool zpass = tile_rule == CountRule::zpass;
+    const bool zpass = tile_rule != CountRule::zfail;  // cover tests depth as z-pass does
     const bool some = zpass ? zhi > tile.zmin : zlo <= tile.zmax;
     const bool all = zpass ? zlo > tile.zmax : zhi <= tile.zmin;
     return TileDecision{!some                  ? TileVerdict::skip
@@ -583,8 +583,9 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   const std::uint64_t passed_before = counters.pixels_passed;
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
-    // it subtract.
-    const std::int32_t front_delta = (p.setup.front ? 1 : -1) * weights[p.triangle];
+    // it subtract; cover: every face in front of it adds.
+    const std::int32_t front_delta =
+        (p.setup.front || rule == CountRule::cover ? 1 : -1) * weights[p.triangle];
     if (front_delta == 0) return;
     const float* depth = target.depth.data();
     std::int32_t* count = target.count.data();
@@ -596,7 +597,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
         // By value: the stores into count may alias anything an int32 reference names.
         [depth, count, bounds, front_delta](std::size_t first, const Mask& covered, const Floats& z,
                                             auto lanes, auto decided, CountRule tile_rule) {
-          const bool zpass = tile_rule != CountRule::zfail;  // prefill counts as z-pass does
+          const bool zpass = tile_rule != CountRule::zfail;  // so do prefill and cover
           const std::int32_t delta = zpass ? front_delta : -front_delta;
           if constexpr (decided) {
             store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),

@@ -123,6 +123,9 @@ enum class CountRule {
   // Every covered pixel, whatever its depth: front faces add the weight, back faces subtract it
   // (the near-plane pre-fill of ZP+, render/near_plane_prefill.h). Depth bounds do not apply.
   prefill,
+  // Fragments in front of the stored depth add the weight whichever way they face: how many
+  // surfaces lie between the eye and the stored one (the transparent surfaces seen through).
+  cover,
 };
 
 // Which tiles a draw counts in, by the rule a split plane picks for them (Laine 2005 §3.3): a

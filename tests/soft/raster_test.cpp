@@ -128,6 +128,27 @@ TEST(Raster, BackFacesSubtractAndTheSharedEdgeIsDrawnOnce) {
   EXPECT_GT(on_edge, 10);
 }
 
+// CountRule::cover counts the surfaces in front of the stored depth whichever way they face:
+// a front face and a back face over a surface at depth 0.25 both add (z-pass would cancel
+// them), and a face behind it adds nothing.
+TEST(Raster, CoverCountsEveryFaceInFrontWhicheverWayItFaces) {
+  constexpr int w = 40, h = 40;
+  Target target(w, h);
+  target.clear_depth(0.25f);  // reversed depth: the faces at 0.5 are in front
+  target.update_tile_depth();
+  std::vector<glm::vec4> tris;
+  add_ndc(tris, {-0.8f, -0.8f}, {0.8f, -0.8f}, {0.0f, 0.8f});  // CCW: front
+  add_ndc(tris, {-0.8f, -0.8f}, {0.0f, 0.8f}, {0.8f, -0.8f});  // CW: back
+  for (const glm::vec2 a : {glm::vec2(-0.8f, -0.8f), glm::vec2(0.8f, -0.8f), glm::vec2(0, 0.8f)})
+    tris.emplace_back(a, 0.1f, 1.0f);  // behind the surface
+  Counters counters;
+  draw_counts(target, tris, std::vector<std::int32_t>(tris.size() / 3, 1), CountRule::cover,
+              counters);
+  EXPECT_EQ(target.count[static_cast<std::size_t>(h / 2) * w + w / 2], 2);
+  EXPECT_EQ(target.count[0], 0);  // outside the triangles
+  for (std::int32_t c : target.count) ASSERT_TRUE(c == 0 || c == 2);
+}
+
 // An eye-space quad crossing the near plane, and a shadow-volume-like triangle with two vertices
 // at infinity, against a ray-cast per pixel: the same pixels, but for those within a pixel of
 // an edge of the projected shape.
