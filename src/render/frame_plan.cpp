@@ -243,7 +243,9 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     if (known == glass_materials.end()) {
       glass_materials.push_back(material);
       plan.glass_log_transmittance.push_back(log_transmittance(material));
+      plan.glass_members.emplace_back();
     }
+    plan.glass_members[static_cast<std::size_t>(plan.glass_group[o])].push_back(o);
   }
 
   // The near-plane rectangle and each object's bounds, eye-relative, for the methods that

@@ -54,6 +54,7 @@ struct FramePlan {
   // the light adds to the point's log light intensity.
   std::vector<int> glass_group;
   std::vector<glm::vec3> glass_log_transmittance;
+  std::vector<std::vector<std::size_t>> glass_members;  // per group: its objects, in order
 
   // Whether the volume of object o for light l counts its caps: z-fail does, and so do a split
   // plane's z-fail tiles. The volume is built with caps also where the pre-fill projects them.

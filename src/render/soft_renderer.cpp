@@ -136,9 +136,8 @@ void SoftRenderer::light_layer(const Pass& pass, std::size_t l, SurfaceLayer& la
   target_.take_nonzero_counts(layer.shadowed[l]);
   if (!plan.glass_log_transmittance.empty()) {
     log_light_.assign(target_.count.size(), glm::vec3(0.0f));
-    for (std::size_t g = 0; g < plan.glass_log_transmittance.size(); ++g) {
-      for (std::size_t o = 0; o < objects; ++o)
-        if (plan.glass_group[o] == static_cast<int>(g)) count_volume(pass, l, o);
+    for (std::size_t g = 0; g < plan.glass_members.size(); ++g) {
+      for (const std::size_t o : plan.glass_members[g]) count_volume(pass, l, o);
       target_.take_counts_into(log_light_, plan.glass_log_transmittance[g]);
     }
     std::vector<glm::vec3>& light = layer.transmitted[l];
@@ -154,9 +153,8 @@ void SoftRenderer::filter_through_glass(const Pass& pass) {
   eye_log_.assign(target_.depth.size(), glm::vec3(0.0f));
   std::vector<soft::TileWork> shadow_work;  // not a shadow pass: leave the tile work alone
   std::swap(shadow_work, target_.tile_work);
-  for (std::size_t g = 0; g < plan.glass_log_transmittance.size(); ++g) {
-    for (std::size_t o = 0; o < pass.scene.objects.size(); ++o) {
-      if (plan.glass_group[o] != static_cast<int>(g)) continue;
+  for (std::size_t g = 0; g < plan.glass_members.size(); ++g) {
+    for (const std::size_t o : plan.glass_members[g]) {
       clip_triangles(pass.scene.objects[o], plan.view_proj * plan.model[o], tris_);
       weights_.assign(tris_.size() / 3, 1);
       soft::draw_counts(target_, tris_, weights_, soft::CountRule::cover, pass.frame.stats.depth);
@@ -229,8 +227,8 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
   }
   frame.tile_work = std::move(per_object ? total_work : target_.tile_work);  // sized afresh
 
-  // --- shading: ambient everywhere, each light as much as reaches the surface; the glass
-  // layer over the opaque one, as a filter of its transmittance plus its own reflection ---
+  // --- shading: ambient everywhere, each light as much as reaches the surface; the opaque
+  // layer seen through every transparent surface in front, plus the nearest one's reflection ---
   auto start = Clock::now();
   frame.image = {w, h, std::vector<std::uint8_t>(pixels * 4)};
   std::vector<std::vector<glm::vec3>> world(scene.objects.size());  // vertices, once per frame
