@@ -9,6 +9,8 @@
 #include <glm/matrix.hpp>
 
 #include "render/near_plane_prefill.h"
+#include "scene/shapes.h"
+#include "soft/clip_polygon.h"
 
 namespace shadowvol {
 namespace {
@@ -176,6 +178,82 @@ glm::vec4 bounded_far_plane(const glm::vec3& lo, const glm::vec3& hi, const glm:
   return glm::vec4(glm::vec3(n), float(-(farthest + margin)));
 }
 
+// Whether the segment from p towards the light (to it, for a point light; along it without end,
+// for a directional one) meets the box [lo, hi]: the slab test, in double.
+bool sees_box_towards_light(const glm::vec3& p, const glm::vec4& light, const glm::vec3& lo,
+                            const glm::vec3& hi) {
+  const bool point = light.w != 0.0f;
+  const glm::dvec3 from(p);
+  const glm::dvec3 d = point ? glm::dvec3(light) / double(light.w) - from : glm::dvec3(light);
+  double t0 = 0.0, t1 = point ? 1.0 : INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0) {
+      if (from[k] < lo[k] || from[k] > hi[k]) return false;
+      continue;
+    }
+    double a = (lo[k] - from[k]) / d[k], b = (hi[k] - from[k]) / d[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  return t0 <= t1;
+}
+
+// Laine 2005 §7's depth bounds (FramePlan::depth_bounds). The box's volume, cut by the far plane,
+// is convex (the hull of the box and its shadow on the plane), so where it meets the frustum its
+// depths reach their extremes on its boundary, cut by the frustum's planes, or at a corner of
+// the near rectangle inside it (depth 1); the far end of the frustum is at infinity (depth 0).
+// Its boundary is the box's own volume, built by core like any other. Widened by a hair, as the
+// rasterizer's depths may round past a vertex's.
+soft::DepthBounds box_volume_depth_bounds(const glm::vec3& lo, const glm::vec3& hi,
+                                          const glm::vec4& light, const glm::vec4& far_plane,
+                                          const glm::mat4& view_proj,
+                                          const std::array<glm::vec3, 4>& near_rect) {
+  const soft::DepthBounds all{0.0f, 1.0f};
+  if (light.w != 0.0f && sees_box_towards_light(glm::vec3(light) / light.w, light, lo, hi))
+    return all;  // a point light in or on the box: its volume is everything around it
+  const Mesh box = make_box(lo, hi);
+  const Topology topology = build_topology(box);
+  VolumeScratch scratch;
+  VolumeBuffer volume;
+  build_volume(topology, light, {Generator::standard, true, far_plane}, scratch, volume);
+  soft::DepthBounds b{1.0f, 0.0f};
+  auto add_triangle = [&](const glm::vec4& a, const glm::vec4& c, const glm::vec4& d) {
+    std::array<glm::vec4, 9> v{view_proj * a, view_proj * c, view_proj * d};
+    int n = 3;
+    // The frustum: before the near plane (z <= w), within x and y (|x|, |y| <= w).
+    const auto planes = {glm::vec4(0, 0, -1, 1), glm::vec4(-1, 0, 0, 1), glm::vec4(1, 0, 0, 1),
+                         glm::vec4(0, -1, 0, 1), glm::vec4(0, 1, 0, 1)};
+    for (const glm::vec4& plane : planes) {
+      soft::clip_polygon(v, n, [&plane](const glm::vec4& x) { return glm::dot(plane, x); });
+      if (n < 3) return;
+    }
+    for (int i = 0; i < n; ++i) {
+      const float depth = v[i].w > 0.0f ? std::clamp(v[i].z / v[i].w, 0.0f, 1.0f) : 0.0f;
+      b.zmin = std::min(b.zmin, depth);
+      b.zmax = std::max(b.zmax, depth);
+    }
+  };
+  auto add = [&](const PrimitiveList& list, int corners) {
+    for (std::size_t p = 0; p < list.size(); ++p) {
+      const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
+      for (int t = 0; t < (corners == kQuadCorners ? 2 : 1); ++t)
+        add_triangle(v[kQuadTriangles[3 * t]], v[kQuadTriangles[3 * t + 1]],
+                     v[kQuadTriangles[3 * t + 2]]);
+    }
+  };
+  add(volume.sides, kQuadCorners);
+  add(volume.light_caps, kTriangleCorners);
+  add(volume.dark_caps, kTriangleCorners);
+  for (const glm::vec3& c : near_rect)
+    if (glm::dot(glm::vec3(far_plane), c) + far_plane.w <= 0.0f &&
+        sees_box_towards_light(c, light, lo, hi))
+      b = {std::min(b.zmin, 1.0f), 1.0f};
+  if (b.zmin > b.zmax) return b;  // out of view
+  constexpr float kSlack = 1e-5f;
+  return {std::max(0.0f, b.zmin - kSlack), std::min(1.0f, b.zmax + kSlack)};
+}
+
 // Draws the segment a-b (clip space, w >= 0 allowed at one end) over the image, blended: clipped
 // to the near plane (z <= w) in homogeneous space, so that a ray to infinity ends at its
 // vanishing point, then stepped pixel by pixel within the viewport.
@@ -263,33 +341,36 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     Shape shape;
   };
   std::vector<Bounds> bounds(objects);
-  const bool per_object = options.method == Method::automatic ||
-                          options.method == Method::split_plane ||
-                          options.method == Method::zpass_prefill;
   const bool bounded = options.extrusion == Extrusion::bounded;
   glm::vec3 reach_lo(INFINITY), reach_hi(-INFINITY);  // the scene and the near plane
   for (const glm::vec3& c : near_rect)
     reach_lo = glm::min(reach_lo, c), reach_hi = glm::max(reach_hi, c);
-  if (per_object || bounded)
-    for (std::size_t o = 0; o < objects; ++o) {
-      glm::vec3 lo(INFINITY), hi(-INFINITY);
-      std::vector<glm::vec3> points;
-      for (const glm::vec3& p : scene.objects[o].topology->positions) {
-        const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(p, 1.0f));
-        lo = glm::min(lo, q);
-        hi = glm::max(hi, q);
-        if (options.method == Method::split_plane) points.push_back(q);
-      }
-      bounds[o] = {lo, hi, (lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, shape_of(points)};
-      reach_lo = glm::min(reach_lo, lo);
-      reach_hi = glm::max(reach_hi, hi);
+  for (std::size_t o = 0; o < objects; ++o) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    std::vector<glm::vec3> points;
+    for (const glm::vec3& p : scene.objects[o].topology->positions) {
+      const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+      if (options.method == Method::split_plane) points.push_back(q);
     }
+    bounds[o] = {lo, hi, (lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, shape_of(points)};
+    reach_lo = glm::min(reach_lo, lo);
+    reach_hi = glm::max(reach_hi, hi);
+  }
   plan.far_plane.assign(scene.lights.size(), std::vector<glm::vec4>(objects, kPlaneAtInfinity));
   for (std::size_t l = 0; l < scene.lights.size() && bounded; ++l)
     for (std::size_t o = 0; o < objects; ++o)
       if (bounds[o].lo.x <= bounds[o].hi.x)  // an object with vertices
         plan.far_plane[l][o] =
             bounded_far_plane(bounds[o].lo, bounds[o].hi, reach_lo, reach_hi, plan.lights[l]);
+  plan.depth_bounds.assign(scene.lights.size(), std::vector<soft::DepthBounds>(objects));
+  for (std::size_t l = 0; l < scene.lights.size(); ++l)
+    for (std::size_t o = 0; o < objects; ++o)
+      if (bounds[o].lo.x <= bounds[o].hi.x)
+        plan.depth_bounds[l][o] =
+            box_volume_depth_bounds(bounds[o].lo, bounds[o].hi, plan.lights[l],
+                                    plan.far_plane[l][o], plan.view_proj, near_rect);
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
   plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
   plan.prefill.assign(scene.lights.size(), std::vector<bool>(objects));
@@ -302,7 +383,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
         prefills && near_plane_prefill_possible(plan.lights[l], plan.view_proj);
     for (std::size_t o = 0; o < objects; ++o) {
       const bool reaches_near =
-          per_object &&
+          options.method != Method::zpass && options.method != Method::zfail &&
           may_shadow_near_plane(bounds[o].centre, bounds[o].radius, near_rect, plan.lights[l]);
       const bool zfail = options.method == Method::zfail || (reaches_near && !can_prefill);
       plan.zfail[l][o] = zfail;

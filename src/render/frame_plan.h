@@ -47,6 +47,12 @@ struct FramePlan {
   // Extrusion::bounded, a plane beyond the scene and the near plane; else, and where no plane
   // can end it well, the plane at infinity.
   std::vector<std::vector<glm::vec4>> far_plane;
+  // [light][object]: the depth bounds of the volume, as Laine 2005 §7 makes them for his
+  // comparison methods: the window depths of the shadow volume of the object's bounding box
+  // (ended on the same far plane) where it meets the view frustum. The software count passes
+  // skip every pixel whose stored depth lies outside them. Empty (zmin > zmax) where the box's
+  // volume is out of view.
+  std::vector<std::vector<soft::DepthBounds>> depth_bounds;
   // Transparent casters (Kim, Kim & Turk 2008 §2): per object, the index of its material's group
   // in glass_log_transmittance, or -1 for an opaque object; per group (one per distinct
   // transparent material, in order of first use), the logarithm of its transmittance per channel

@@ -77,17 +77,9 @@ void SoftRenderer::count_volume(const Pass& pass, std::size_t l, std::size_t o) 
     if (!glass) clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris_, weights_);
     clip_volume(v.dark_caps, kTriangleCorners, mvp, sign, tris_, weights_);
   }
-  // Depth bounds: the volume's range of window depths (a triangle's depth is affine on the
-  // screen, so its range is its vertices'; one before the near plane stands for the point where
-  // the triangle crosses it, at depth 1). Bounded volumes end short of depth 0.
-  soft::DepthBounds bounds{1.0f, 0.0f};
-  for (const glm::vec4& c : tris_) {
-    const float depth = c.w <= 0.0f || c.z > c.w ? 1.0f : c.z / c.w;
-    bounds.zmin = std::min(bounds.zmin, depth);
-    bounds.zmax = std::max(bounds.zmax, depth);
-  }
-  // Pre-filled z-pass starts inside the volume: a pixel beyond all of it must still count its
-  // way out, so no far bound.
+  // Depth bounds, Laine 2005 §7's (FramePlan::depth_bounds). Pre-filled z-pass starts inside the
+  // volume: a pixel beyond all of it must still count its way out, so no far bound.
+  soft::DepthBounds bounds = plan.depth_bounds[l][o];
   if (plan.prefill[l][o]) bounds.zmin = 0.0f;
   const std::span<const glm::vec4> all_tris(tris_);
   const std::span<const std::int32_t> all_weights(weights_);

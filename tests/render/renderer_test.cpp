@@ -160,6 +160,59 @@ TEST(Renderer, FlatCastersGetTheirOwnPlaneAndRodsStayPointPointLight) {
   EXPECT_NEAR(rod_at({5.0f, 0.5f, 0.0f}), 0.0, 1e-2);
 }
 
+// Laine 2005 §7's depth bounds (FramePlan::depth_bounds) hold every point of each volume that the
+// frustum keeps: points along the rays from each vertex away from the light, up to the far
+// plane, every one in view within its object's bounds. They reach depth 1 when the eye is in
+// the volume, and are empty for a volume out of view.
+TEST(FramePlan, DepthBoundsHoldEveryVisiblePointOfTheVolume) {
+  for (const char* name : {"demo", "light-in-view", "camera-in-shadow", "directional", "knight"})
+    for (const Extrusion extrusion : {Extrusion::infinite, Extrusion::bounded}) {
+      auto scene = builtin_scene(name);
+      ASSERT_TRUE(scene.ok());
+      FrameStats stats;
+      const FramePlan plan =
+          plan_frame(*scene, {320, 180, Method::automatic, Generator::automatic, extrusion}, stats);
+      std::size_t inside = 0;
+      for (std::size_t l = 0; l < scene->lights.size(); ++l)
+        for (std::size_t o = 0; o < scene->objects.size(); ++o) {
+          const soft::DepthBounds b = plan.depth_bounds[l][o];
+          const glm::vec4 light = plan.lights[l];
+          const glm::vec4 far = plan.far_plane[l][o];
+          for (const glm::vec3& p : scene->objects[o].mesh->positions) {
+            const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(p, 1.0f));
+            const glm::vec3 away =
+                light.w != 0.0f ? q - glm::vec3(light) / light.w : -glm::vec3(light);
+            for (float t = 0.0f; t <= 64.0f; t = t * 1.5f + 0.05f) {
+              const glm::vec3 x = q + away * t;
+              if (glm::dot(glm::vec3(far), x) + far.w > 0.0f) break;  // past the far plane
+              const glm::vec4 c = plan.view_proj * glm::vec4(x, 1.0f);
+              if (c.w <= 0.0f || c.z > c.w || std::abs(c.x) > c.w || std::abs(c.y) > c.w)
+                continue;  // out of view
+              const float depth = c.z / c.w;
+              ++inside;
+              ASSERT_GE(depth, b.zmin) << name << " " << scene->objects[o].name;
+              ASSERT_LE(depth, b.zmax) << name << " " << scene->objects[o].name;
+            }
+          }
+        }
+      EXPECT_GT(inside, 1000u) << name;
+    }
+  // The eye inside the slab's volume: the bounds reach the near plane.
+  auto shadowed_eye = builtin_scene("camera-in-shadow");
+  ASSERT_TRUE(shadowed_eye.ok());
+  FrameStats stats;
+  const FramePlan plan = plan_frame(*shadowed_eye, {320, 180}, stats);
+  EXPECT_EQ(plan.depth_bounds[0][1].zmax, 1.0f);  // objects[1]: the slab
+  // A box behind the camera, lit from behind it too: its volume runs away out of view.
+  Scene behind;
+  behind.objects.push_back(make_object("box", make_box(glm::vec3(-0.5f), glm::vec3(0.5f)),
+                                       glm::translate(glm::mat4(1.0f), {0.0f, 2.0f, 12.0f}),
+                                       glm::vec3(0.8f)));
+  behind.lights.push_back({{0.0f, 2.0f, 6.0f, 1.0f}});
+  const FramePlan away = plan_frame(behind, {320, 180}, stats);
+  EXPECT_GT(away.depth_bounds[0][0].zmin, away.depth_bounds[0][0].zmax);
+}
+
 TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
   auto scene = builtin_scene("demo");
   ASSERT_TRUE(scene.ok());
