@@ -349,10 +349,15 @@ int run_viewer(const ViewArgs& args) {
       for (std::size_t o = 0; o < scene.objects.size() && o < 12; ++o) {
         const int zfail = o < stats.zfail_lights.size() ? stats.zfail_lights[o] : 0;
         const int lights = static_cast<int>(scene.lights.size());
-        std::snprintf(line, sizeof line, "  %s: %s", scene.objects[o].name.c_str(),
+        const Material& material = scene.objects[o].material;
+        char glass[48] = "";
+        if (material.transparent())
+          std::snprintf(glass, sizeof glass, ", transparent (opacity %.2f)", material.opacity);
+        std::snprintf(line, sizeof line, "  %s: %s%s", scene.objects[o].name.c_str(),
                       zfail == 0        ? "z-pass"
                       : zfail == lights ? "z-fail"
-                                        : "z-fail for some lights");
+                                        : "z-fail for some lights",
+                      glass);
         lines.push_back(line);
       }
       lines.push_back(
