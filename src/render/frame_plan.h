@@ -143,6 +143,9 @@ inline constexpr glm::vec3 kBackgroundBottom{0.16f, 0.18f, 0.22f};
 // The background at row y of h (row 0 at the top).
 glm::vec3 background(int y, int h);
 float to_srgb(float linear);
+// lround(to_srgb(linear) * 255), exactly, by a search among the 255 linear values where the 8-bit
+// code steps (found once): a frame encodes millions of channels, and pow is most of its cost.
+std::uint8_t to_srgb8(float linear);
 }  // namespace shading
 
 }  // namespace shadowvol

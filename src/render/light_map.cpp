@@ -25,9 +25,7 @@ Image light_map_image(const Scene& scene, const Frame& frame) {
                                      : frame.transmitted[l][p];
       arriving += scene.lights[l].color * scene.lights[l].intensity * fraction;
     }
-    for (int c = 0; c < 3; ++c)
-      out.rgba[4 * p + c] =
-          static_cast<std::uint8_t>(std::lround(shading::to_srgb(arriving[c] / full[c]) * 255.0f));
+    for (int c = 0; c < 3; ++c) out.rgba[4 * p + c] = shading::to_srgb8(arriving[c] / full[c]);
   }
   return out;
 }

@@ -278,9 +278,7 @@ Frame SoftRenderer::render(const Scene& scene, const RenderOptions& options) {
         const Material& m = scene.objects[static_cast<std::size_t>(frame.glass.object[p])].material;
         color += m.opacity * shade(frame.glass, glass_depth, x, y, p);
       }
-      for (int k = 0; k < 3; ++k)
-        frame.image.rgba[4 * p + k] =
-            static_cast<std::uint8_t>(std::lround(shading::to_srgb(color[k]) * 255.0f));
+      for (int k = 0; k < 3; ++k) frame.image.rgba[4 * p + k] = shading::to_srgb8(color[k]);
       frame.image.rgba[4 * p + 3] = 255;
     }
   });

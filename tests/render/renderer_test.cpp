@@ -213,6 +213,31 @@ TEST(FramePlan, DepthBoundsHoldEveryVisiblePointOfTheVolume) {
   EXPECT_GT(away.depth_bounds[0][0].zmin, away.depth_bounds[0][0].zmax);
 }
 
+// The 8-bit sRGB encoding by table search gives exactly the rounded formula: on every float
+// from 0 to 1 a step of 2^-20 apart, at and around every step of the table, and outside [0, 1].
+TEST(Shading, EightBitSrgbIsTheRoundedFormulaExactly) {
+  const auto formula = [](float v) {
+    return static_cast<int>(std::lround(shading::to_srgb(v) * 255.0f));
+  };
+  for (int i = 0; i <= (1 << 20); ++i) {
+    const float v = static_cast<float>(i) / static_cast<float>(1 << 20);
+    ASSERT_EQ(shading::to_srgb8(v), formula(v)) << v;
+    for (const float w : {std::nextafter(v, 0.0f), std::nextafter(v, 1.0f)})
+      ASSERT_EQ(shading::to_srgb8(w), formula(w)) << w;
+  }
+  for (int code = 1; code <= 255; ++code) {  // where each code begins, found by the formula
+    float lo = 0.0f, hi = 1.0f;
+    for (int i = 0; i < 64; ++i) {
+      const float mid = lo + (hi - lo) * 0.5f;
+      (formula(mid) >= code ? hi : lo) = mid;
+    }
+    for (float v = std::nextafter(lo, 0.0f), n = 0; n < 4; v = std::nextafter(v, 2.0f), ++n)
+      ASSERT_EQ(shading::to_srgb8(v), formula(v)) << v;
+  }
+  EXPECT_EQ(shading::to_srgb8(-1.0f), 0);
+  EXPECT_EQ(shading::to_srgb8(7.0f), 255);
+}
+
 TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
   auto scene = builtin_scene("demo");
   ASSERT_TRUE(scene.ok());
