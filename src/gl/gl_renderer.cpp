@@ -289,6 +289,14 @@ Expected<std::unique_ptr<GlRenderer>> GlRenderer::create(GlSettings settings,
        {{GL_VERTEX_SHADER, kPassVertex},
         {GL_GEOMETRY_SHADER, kVolumeGeometry},
         {GL_FRAGMENT_SHADER, kCountFragment}}},
+      {&r->light_map_cpu_,
+       "cpu volumes into the light map",
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, kLightMapFragment}}},
+      {&r->light_map_gpu_,
+       "gpu volumes into the light map",
+       {{GL_VERTEX_SHADER, kPassVertex},
+        {GL_GEOMETRY_SHADER, kVolumeGeometry},
+        {GL_FRAGMENT_SHADER, kLightMapFragment}}},
       {&r->cover_,
        "transparent surfaces in front",
        {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kCoverFragment}}},
@@ -540,7 +548,6 @@ void GlRenderer::light_layer(const Pass& pass, std::size_t l, bool glass_layer,
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   }
   glUseProgram(cpu ? volume_cpu_.get() : volume_gpu_.get());
-  glUniform3f(glsl::kPerCount, 1.0f, 0.0f, 0.0f);
   for (std::size_t o = 0; o < scene.objects.size(); ++o)
     if (plan.glass_group[o] < 0) draw_volume(o, additive);
   glDisable(GL_DEPTH_CLAMP);
@@ -578,6 +585,7 @@ void GlRenderer::light_layer(const Pass& pass, std::size_t l, bool glass_layer,
     glClearNamedFramebufferfv(t.light.get(), GL_COLOR, 0, zero);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(cpu ? light_map_cpu_.get() : light_map_gpu_.get());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
       if (plan.glass_group[o] < 0) continue;
       glUniform3fv(

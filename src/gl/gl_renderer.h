@@ -98,7 +98,8 @@ class GlRenderer final : public Renderer {
   // [0]: the scene through a vertex shader alone; [1]: through a pass-through geometry shader,
   // to match the depths of geometry-shader volumes (shaders.h).
   Object surface_depth_[2], surface_lit_[2];
-  Object volume_cpu_, volume_gpu_, cover_, see_through_, background_, resolve_;
+  Object volume_cpu_, volume_gpu_, light_map_cpu_, light_map_gpu_, cover_, see_through_,
+      background_, resolve_;
   Object empty_vao_;
   std::unique_ptr<Targets> targets_;
   std::unordered_map<const Topology*, std::unique_ptr<MeshBuffers>> meshes_;

@@ -240,16 +240,23 @@ void main() {
 
 // Counts: additive target (R32F, blended ONE + ONE) or, with colour writes off, the stencil.
 // z-pass adds a front face's weight, z-fail subtracts it (kRuleSign), back faces the opposite.
-// Each count adds per_count: (1, 0, 0) into the count target, or a transparent caster's log
-// transmittance into the log light map (RGBA32F; Kim et al. §3, Eq. 3).
 inline constexpr const char* kCountFragment = R"(#version 450 core
 flat in int primitive_weight;
 layout(location = 3) uniform float rule_sign;
+layout(location = 0) out float count;
+void main() { count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0); }
+)";
+
+// The log light map of transparent casters (RGBA32F, blended ONE + ONE; Kim et al. §3, Eq. 3):
+// each count, as above, times its caster's log transmittance (per_count).
+inline constexpr const char* kLightMapFragment = R"(#version 450 core
+flat in int primitive_weight;
+layout(location = 3) uniform float rule_sign;
 layout(location = 19) uniform vec3 per_count;
-layout(location = 0) out vec4 count;
+layout(location = 0) out vec4 log_light;
 void main() {
-  float c = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
-  count = vec4(c * per_count, 0.0);
+  float count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
+  log_light = vec4(count * per_count, 0.0);
 }
 )";
 
