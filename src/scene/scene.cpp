@@ -41,11 +41,18 @@ Scene scene_at_frame(const Scene& scene, int frame) {
                   glm::rotate(glm::mat4(1.0f), glm::radians(o.animation.degrees_per_frame * f),
                               o.animation.spin_axis);
   }
+  const auto turn_about_y = [f](float degrees_per_frame) {
+    return glm::rotate(glm::mat4(1.0f), glm::radians(degrees_per_frame * f), glm::vec3(0, 1, 0));
+  };
   for (SceneLight& l : s.lights)
     if (l.orbit_degrees_per_frame != 0.0f)
-      l.position = glm::rotate(glm::mat4(1.0f), glm::radians(l.orbit_degrees_per_frame * f),
-                               glm::vec3(0, 1, 0)) *
-                   l.position;
+      l.position = turn_about_y(l.orbit_degrees_per_frame) * l.position;
+  Camera& c = s.camera;
+  if (c.orbit_degrees_per_frame != 0.0f) {  // the whole rig turns, up too: it stays valid
+    const glm::mat4 turn = turn_about_y(c.orbit_degrees_per_frame);
+    c.position = c.target + glm::vec3(turn * glm::vec4(c.position - c.target, 0.0f));
+    c.up = glm::vec3(turn * glm::vec4(c.up, 0.0f));
+  }
   return s;
 }
 

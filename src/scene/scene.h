@@ -83,6 +83,9 @@ struct Camera {
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fov_y_degrees = 45.0f;
   float near = 0.1f;  // the far plane is at infinity
+  // Turns about the vertical line through `target`, frame by frame (position and up turn, the
+  // target stays): Laine 2005's test animations move the viewpoint as well as the light.
+  float orbit_degrees_per_frame = 0.0f;
 
   // The view of eye-relative space, where the eye is the origin: a rotation alone.
   // DESIGN.md "Numerics": geo-referenced models sit 1e5-1e6 units out, where float leaves

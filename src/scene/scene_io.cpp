@@ -142,7 +142,7 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
 
   if (!root.contains("camera")) return make_error(name + ": scene.camera: missing");
   const json& cam = root["camera"];
-  if (!r.keys(cam, "scene.camera", {"position", "target", "up", "fov", "near"}))
+  if (!r.keys(cam, "scene.camera", {"position", "target", "up", "fov", "near", "orbit"}))
     return make_error(r.error);
   for (const char* required : {"position", "target"})
     if (!cam.contains(required))
@@ -159,9 +159,15 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
                                ? true
                                : r.fail(p, "the field of view must lie between 1 and 179 degrees"));
                  }) &&
-      r.optional(cam, "scene.camera", "near", [&](const json& v, const std::string& p) {
-        return r.number(v, p, scene.camera.near) &&
-               (scene.camera.near > 0.0f ? true : r.fail(p, "the near distance must be positive"));
+      r.optional(cam, "scene.camera", "near",
+                 [&](const json& v, const std::string& p) {
+                   return r.number(v, p, scene.camera.near) &&
+                          (scene.camera.near > 0.0f
+                               ? true
+                               : r.fail(p, "the near distance must be positive"));
+                 }) &&
+      r.optional(cam, "scene.camera", "orbit", [&](const json& v, const std::string& p) {
+        return r.number(v, p, scene.camera.orbit_degrees_per_frame);
       });
   if (!r.error.empty()) return make_error(r.error);
   if (glm::length(scene.camera.target - scene.camera.position) == 0.0f)

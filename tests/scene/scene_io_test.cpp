@@ -29,7 +29,7 @@ TEST(SceneFile, TheShippedExampleLoads) {
 
 TEST(SceneFile, AnimationSpinsMovesAndOrbits) {
   const auto path = write_temp("animated", R"({
-    "camera": {"position": [0, 2, 5], "target": [0, 0, 0]},
+    "camera": {"position": [0, 2, 5], "target": [0, 1, 0], "orbit": -90},
     "lights": [{"position": [4, 5, 0], "orbit": 90}],
     "objects": [{"shape": "box", "animation": {"spin": [0, 1, 0], "degrees_per_frame": 90,
                                                "move": [1, 0, 0]}}]})");
@@ -42,6 +42,13 @@ TEST(SceneFile, AnimationSpinsMovesAndOrbits) {
   EXPECT_NEAR(at.objects[0].transform[3].x, 1.0f, 1e-6f);
   EXPECT_NEAR(at.lights[0].position.z, -4.0f, 1e-5f);
   EXPECT_NEAR(at.lights[0].position.x, 0.0f, 1e-5f);
+  // The camera turned the other way about the line x = z = 0: from +z to -x, still looking at
+  // the target, from the same height.
+  EXPECT_NEAR(at.camera.position.x, -5.0f, 1e-5f);
+  EXPECT_NEAR(at.camera.position.y, 2.0f, 1e-6f);
+  EXPECT_NEAR(at.camera.position.z, 0.0f, 1e-5f);
+  EXPECT_EQ(at.camera.target, glm::vec3(0, 1, 0));
+  EXPECT_EQ(scene_at_frame(*scene, 0).camera.position, scene->camera.position);
   EXPECT_EQ(scene_at_frame(*scene, 0).objects[0].transform, scene->objects[0].transform);
 }
 
@@ -124,7 +131,7 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"not_json", "{ camera: ", "not valid JSON"},
         Bad{"no_camera", R"({"lights": [], "objects": []})", "scene.camera: missing"},
         Bad{"unknown_key", R"({"camera": {"position": [0,2,5], "target": [0,0,0], "zoom": 2}})",
-            "scene.camera.zoom: unknown key (expected one of: position, target, up, fov, near)"},
+            "scene.camera.zoom: unknown key (expected one of: position, target, up, fov, near, orbit)"},
         Bad{"short_vector", R"({"camera": {"position": [0, 2], "target": [0,0,0]}})",
             "scene.camera.position: expected 3 numbers [x, y, z], got array"},
         Bad{"up_along_view", R"({"camera": {"position": [0,2,5], "target": [0,50,5]}})",
