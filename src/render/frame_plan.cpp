@@ -71,7 +71,8 @@ glm::vec4 point_point_light(const glm::vec3& p1, const glm::vec3& p2, const glm:
   return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, a)));
 }
 
-// An object's principal axes, from the covariance of its vertices (in double): the long axis
+// An object's centroid (the mean of its vertices, where Point-Camera-Light puts its point) and
+// its principal axes, from the covariance of its vertices (in double): the long axis
 // (the principal direction, by power iteration), its ends where the vertices' projections end,
 // and whether the object is at least twice as long as it is wide (as far across as its farthest
 // vertex from the axis); the thin axis (the least principal direction, by power iteration on
@@ -79,6 +80,7 @@ glm::vec4 point_point_light(const glm::vec3& p1, const glm::vec3& p2, const glm:
 // the vertices' projections on it, and whether the object is flat: a hundred times thinner along
 // it than long, and not elongated (a rod is thin across both of its short axes).
 struct Shape {
+  glm::vec3 centroid{0.0f};
   glm::vec3 p1{0.0f}, p2{0.0f};
   bool elongated = false;
   glm::dvec3 thin_axis{0.0};
@@ -101,6 +103,7 @@ Shape shape_of(const std::vector<glm::vec3>& points) {
   glm::dvec3 mean(0.0);
   for (const glm::vec3& p : points) mean += glm::dvec3(p);
   mean /= double(points.size());
+  shape.centroid = glm::vec3(mean);
   glm::dmat3 covariance(0.0);
   for (const glm::vec3& p : points) {
     const glm::dvec3 d = glm::dvec3(p) - mean;
@@ -401,7 +404,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
           const bool ppl =
               choice == SplitPlaneChoice::point_point_light || (automatic && shape.elongated);
           plane = ppl ? point_point_light(shape.p1, shape.p2, plan.lights[l])
-                      : point_camera_light(bounds[o].centre, plan.lights[l]);
+                      : point_camera_light(shape.centroid, plan.lights[l]);
         }
         plan.split[l][o] = plane_to_clip * *plane;
       }

@@ -262,8 +262,12 @@ Scene glass() {
 }
 
 // Laine 2005's test scenes, in their spirit (Table 1): a light circling overhead, frame by
-// frame, and the casters turning, so that `bench --frames N` sees an animation.
+// frame, the camera turning about the casters and the knights turning, so that `bench --frames
+// N` sees an animation.
 constexpr SceneLight kCirclingLight = {{3.5f, 6.0f, 2.5f, 1.0f}, {1.0f, 0.97f, 0.9f}, 1.0f, 4.0f};
+// Laine's viewpoint moves too (§7): the camera turns the other way, half as fast, so that over
+// the light's full circle it sees the casters from half way round.
+constexpr float kCameraOrbit = -2.0f;
 
 Scene knight() {
   Scene s;
@@ -274,6 +278,7 @@ Scene knight() {
   s.objects.back().animation = {{0.0f, 1.0f, 0.0f}, 2.0f, glm::vec3(0.0f)};
   s.lights.push_back(kCirclingLight);
   s.camera = {{0.5f, 2.2f, 4.2f}, {0.0f, 1.0f, 0.0f}};
+  s.camera.orbit_degrees_per_frame = kCameraOrbit;
   return s;
 }
 
@@ -297,6 +302,7 @@ Scene knights16() {
   }
   s.lights.push_back(kCirclingLight);
   s.camera = {{1.0f, 5.5f, 8.5f}, {0.0f, 0.6f, 0.0f}};
+  s.camera.orbit_degrees_per_frame = kCameraOrbit;
   return s;
 }
 
@@ -317,6 +323,7 @@ Scene tree(bool decomposed) {
   }
   s.lights.push_back(kCirclingLight);
   s.camera = {{0.0f, 3.4f, 10.0f}, {0.0f, 2.5f, 0.0f}};
+  s.camera.orbit_degrees_per_frame = kCameraOrbit;
   return s;
 }
 

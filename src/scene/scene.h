@@ -46,11 +46,12 @@ struct Animation {
 
 // How `--method spsv` builds an object's split plane (Laine 2005 §4): through the light, the
 // object's centre line, and either orthogonal to the plane of that line and the camera
-// (Point-Camera-Light, §4.1) or through the object's long axis (Point-Point-Light, §4.2, for
-// long thin parts such as branches); or, ours, for a flat object such as a floor (`flat`), its
-// own plane moved just past it away from the light, which leaves its whole volume on the far
-// side. `auto` takes `ppl` for an object at least twice as long as it is wide, else `flat` for
-// one a hundred times thinner than it is long, else `pcl`.
+// (Point-Camera-Light, §4.1, the line through the mean of the object's vertices) or through the
+// object's long axis (Point-Point-Light, §4.2, for long thin parts such as branches); or, ours,
+// for a flat object such as a floor (`flat`), its own plane moved just past it away from the
+// light, which leaves its whole volume on the far side. `auto` takes `ppl` for an object at
+// least twice as long as it is wide, else `flat` for one a hundred times thinner than it is
+// long, else `pcl`.
 enum class SplitPlaneChoice : std::uint8_t {
   automatic,
   point_camera_light,

@@ -116,6 +116,39 @@ TEST(Renderer, SplitPlanesRunAlongLongThinObjects) {
             "unknown split plane 'pp': expected auto, pcl, ppl or flat");
 }
 
+// Point-Camera-Light's line runs through the mean of the object's vertices, not the centre of its
+// box: a plain box with a finely tessellated ball beside it puts the line near the ball.
+TEST(Renderer, PointCameraLightRunsThroughTheObjectsCentroid) {
+  Mesh mesh = make_box({-2.0f, -0.5f, -0.5f}, {-1.0f, 0.5f, 0.5f});
+  const Mesh ball = make_sphere({2.0f, 0.0f, 0.0f}, 0.5f, 16, 32);
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), ball.positions.begin(), ball.positions.end());
+  for (const std::uint32_t i : ball.indices) mesh.indices.push_back(base + i);
+  Scene scene;
+  scene.objects.push_back(make_object(
+      "box_and_ball", mesh, glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, 0.0f}), glm::vec3(0.8f)));
+  scene.objects[0].split_plane = SplitPlaneChoice::point_camera_light;
+  scene.lights.push_back({{1.0f, 6.0f, -3.0f, 1.0f}, glm::vec3(1.0f), 1.0f});
+  scene.camera = {{0.0f, 2.0f, 6.0f}, {0.0f, 1.0f, 0.0f}};
+  FrameStats stats;
+  const FramePlan plan =
+      plan_frame(scene, {320, 200, Method::split_plane, Generator::automatic}, stats);
+  ASSERT_TRUE(plan.split[0][0].has_value());
+  const glm::dvec4 plane =
+      glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
+  const auto distance = [&](const glm::dvec3& object_point) {  // world units
+    const glm::dvec4 x = glm::dmat4(plan.model[0]) * glm::dvec4(object_point, 1.0);
+    return std::abs(glm::dot(plane, x)) / glm::length(glm::dvec3(plane));
+  };
+  const Topology& topology = *scene.objects[0].topology;
+  glm::dvec3 mean(0.0);
+  for (const glm::vec3& p : topology.positions) mean += glm::dvec3(p);
+  mean /= double(topology.positions.size());
+  EXPECT_GT(mean.x, 1.5);  // the ball's many vertices pull it over
+  EXPECT_LT(distance(mean), 1e-4);
+  EXPECT_GT(distance({0.25, 0.0, 0.0}), 0.1);  // the box's centre lies off the plane
+}
+
 // A floor gets its own plane, moved just past it away from the light: every point of the floor
 // on the light's side, and its volume (below it) on the other. A rod a thousand times thinner
 // than long is elongated, not flat: it still gets Point-Point-Light.
