@@ -539,9 +539,12 @@ CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::ve
       (float(tile_x * kTileSize) + kTileSize / 2.0f) / float(target.width) * 2.0f - 1.0f;
   const float y =
       1.0f - (float(tile_y * kTileSize) + kTileSize / 2.0f) / float(target.height) * 2.0f;
-  // Laine 2005 Eq. 8, with tile.zmin the farthest depth (reversed depth): the side of the plane
-  // the point lies on, against the camera's side, sign(plane.z).
-  const float side = plane.x * x + plane.y * y + plane.z * tile.zmin + plane.w;
+  // Laine 2005 Eq. 8 at the middle of the tile's depth range: the side of the plane the point
+  // lies on, against the camera's side, sign(plane.z). Laine tests the farthest depth (favouring
+  // z-fail where the plane cuts the tile's range) and calls the choice arbitrary; the middle
+  // favours neither, and did better on each of the suite's scenes (README).
+  const float middle = 0.5f * (tile.zmin + tile.zmax);
+  const float side = plane.x * x + plane.y * y + plane.z * middle + plane.w;
   const bool camera_side = (plane.z > 0.0f && side > 0.0f) || (plane.z < 0.0f && side < 0.0f);
   return camera_side ? CountRule::zpass : CountRule::zfail;
 }

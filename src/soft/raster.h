@@ -134,9 +134,10 @@ enum class CountRule {
 enum class SplitTiles { all, zfail_only, zpass_only };
 
 // The split test of Laine 2005 §4.3 and §5.2, made once per tile: the tile takes z-pass when
-// the point of its centre at its farthest stored depth, (x, y, depth, 1) in normalized device
-// coordinates, lies strictly on the camera's side of `plane` (a clip-space plane; the camera
-// is the clip-space point (0, 0, 1, 0)), and z-fail otherwise. Any plane gives the right
+// the point of its centre at the middle of its stored depths ((zmin + zmax) / 2 of its hi-z),
+// (x, y, depth, 1) in normalized device coordinates, lies strictly on the camera's side of
+// `plane` (a clip-space plane; the camera is the clip-space point (0, 0, 1, 0)), and z-fail
+// otherwise. Any plane gives the right
 // counts, since each tile's choice is the same for every draw of one volume; a plane through
 // the middle of the volume makes most tiles need no count at all.
 struct SplitPlane {

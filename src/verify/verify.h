@@ -10,8 +10,8 @@
 // boundary can pass between pixel centres without changing any of them: a sliver of shadow or
 // light thinner than a pixel, such as the tip of a self-shadow at a silhouette vertex. So a
 // mismatch with no boundary among its neighbours is looked at again: the reference is traced
-// every quarter pixel over the square between the neighbours' centres, and it is outside the
-// band only if all those samples agree.
+// every sixteenth of a pixel over the square between the neighbours' centres, and it is outside
+// the band only if all those samples agree.
 #pragma once
 
 #include <cstddef>
