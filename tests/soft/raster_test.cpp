@@ -419,5 +419,20 @@ TEST(Raster, ASplitPlaneChoosesPerTileWithoutChangingAnyCount) {
   EXPECT_GT(shadowed, w * h / 10);
 }
 
+// Where the plane cuts a tile's range of stored depths, the tile's rule follows the middle of
+// that range: z-pass when the middle lies on the camera's side, whatever its nearest and
+// farthest depths say.
+TEST(Raster, TheSplitTestTakesTheMiddleOfTheTilesDepths) {
+  Target target(8, 8);
+  target.tile_depth[0] = {0.2f, 0.8f};  // farthest 0.2, nearest 0.8 (reversed depth)
+  // The planes depth = c in normalized device coordinates, the camera (depth 1) on the side
+  // where depth > c.
+  const auto rule = [&](float c) { return split_rule(target, 0, 0, {0.0f, 0.0f, 1.0f, -c}); };
+  EXPECT_EQ(rule(0.4f), CountRule::zpass);  // the farthest depth alone would say z-fail
+  EXPECT_EQ(rule(0.6f), CountRule::zfail);  // the nearest alone would say z-pass
+  EXPECT_EQ(rule(0.1f), CountRule::zpass);
+  EXPECT_EQ(rule(0.9f), CountRule::zfail);
+}
+
 }  // namespace
 }  // namespace shadowvol::soft
