@@ -225,6 +225,7 @@ struct FrameArgs {
   std::string volumes = "cpu";
   std::string counts = "auto";
   std::string extrusion = "infinite";
+  std::string split_planes = "sampled";
 };
 
 // `with_backend`: false for the viewer, which is OpenGL by nature.
@@ -242,6 +243,11 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_
   cmd->add_option("--extrusion", args.extrusion,
                   "infinite (volumes to w = 0) or bounded (ended on a plane just beyond the "
                   "scene, closed by dark caps: less to rasterize)")
+      ->capture_default_str();
+  cmd->add_option("--split-planes", args.split_planes,
+                  "spsv: laine (Laine 2005's Point-Camera-Light / Point-Point-Light, flat for "
+                  "flat objects) or sampled (that plane and 36 others, the cheapest on a sample "
+                  "of each volume's tiles)")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   if (with_backend)
@@ -267,9 +273,12 @@ struct ResolvedFrame {
   gl::GlSettings gl;
 };
 
-// The method as the command line reports it, "(bounded)" after it where volumes are.
+// The method as the command line reports it, "(Laine's planes)" after spsv where they are not
+// sampled, "(bounded)" where volumes are.
 std::string method_label(const RenderOptions& options) {
-  return std::string(to_string(options.method)) +
+  const bool laine =
+      options.method == Method::split_plane && options.split_planes == SplitPlanes::laine;
+  return std::string(to_string(options.method)) + (laine ? " (Laine's planes)" : "") +
          (options.extrusion == Extrusion::bounded ? " (bounded)" : "");
 }
 
@@ -304,7 +313,10 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!size) return size.error();
   auto extrusion = parse_extrusion(args.extrusion);
   if (!extrusion) return make_error("--extrusion: " + extrusion.error().message);
+  auto split_planes = parse_split_planes(args.split_planes);
+  if (!split_planes) return make_error("--split-planes: " + split_planes.error().message);
   RenderOptions options{size->first, size->second, *method, *generator, *extrusion};
+  options.split_planes = *split_planes;
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   auto backend = parse_backend(args.backend);
   if (!backend) return make_error("--backend: " + backend.error().message);
@@ -444,6 +456,7 @@ int verify(const VerifyArgs& args) {
                                 {"method", std::string(to_string(options.method))},
                                 {"generator", std::string(to_string(options.generator))},
                                 {"extrusion", std::string(to_string(options.extrusion))},
+                                {"split_planes", std::string(to_string(options.split_planes))},
                                 {"backend", backend},
                                 {"frame", args.frame_number},
                                 {"width", options.width},
@@ -553,6 +566,7 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
                        {"height", options.height},
                        {"method", std::string(to_string(options.method))},
                        {"extrusion", std::string(to_string(options.extrusion))},
+                       {"split_planes", std::string(to_string(options.split_planes))},
                        {"volumes", args.volumes},
                        {"frames", frames},
                        {"frame_ms", wall / n},
@@ -725,8 +739,8 @@ int main(int argc, char** argv) {
           ->expected(0, 1);
   bench_cmd->add_option("--suite", bench_suite,
                         "Run a measurement suite instead: spsv (Laine 2005's counters over the "
-                        "animated knight, knights16, tree and tree-decomposed, with zp+db, zf+db "
-                        "and spsv; 1024x768 unless --size)");
+                        "animated knight, knights16, tree and tree-decomposed, with zp+db, zf+db, "
+                        "spsv and spsv-laine; 1024x768 unless --size)");
   bench_cmd->add_option("--csv", bench_csv,
                         "With --suite: write one row per scene, method and frame to this file");
   bench_cmd->add_option("--plot", bench_plot,

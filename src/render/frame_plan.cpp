@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -50,13 +51,21 @@ bool may_shadow_near_plane(const glm::vec3& centre, float radius,
 // Laine 2005 §4.1, Eq. 4, eye-relative (the camera at the origin): the plane through the
 // volume's centre line (from the light through p, or along a directional light) that is
 // orthogonal to the plane of that line and the camera, so that it splits the volume in halves
-// as the camera sees them. Degenerate (zero) when the camera lies on the centre line, which the
-// split test reads as z-fail everywhere: still exact.
-glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light) {
+// as the camera sees them; then (our alternatives, split_plane_candidates) `turn` radians about
+// the centre line, where a quarter turn holds the camera, and `tilt` radians of the normal
+// towards the centre line's direction, about p. Unit normal. Degenerate (zero) when the camera
+// lies on the centre line, which the split test reads as z-fail everywhere: still exact.
+glm::vec4 point_camera_light(const glm::vec3& p, const glm::vec4& light, double turn = 0.0,
+                             double tilt = 0.0) {
   const glm::dvec3 centre(p);
   const glm::dvec3 along =
       light.w != 0.0f ? centre - glm::dvec3(light) / double(light.w) : -glm::dvec3(light);
-  const glm::dvec3 normal = glm::cross(glm::cross(-centre, along), along);
+  const glm::dvec3 towards_camera = glm::cross(-centre, along);  // normal of (camera, line)
+  const glm::dvec3 laine = glm::cross(towards_camera, along);
+  if (!(glm::length(laine) > 0.0)) return glm::vec4(0.0f);
+  const glm::dvec3 turned =
+      std::cos(turn) * glm::normalize(laine) + std::sin(turn) * glm::normalize(towards_camera);
+  const glm::dvec3 normal = std::cos(tilt) * turned + std::sin(tilt) * glm::normalize(along);
   return glm::vec4(glm::vec3(normal), float(-glm::dot(normal, centre)));
 }
 
@@ -150,6 +159,31 @@ std::optional<glm::vec4> flat_plane(const Shape& shape, const glm::vec4& light) 
   if (light_side > 0.0) return glm::vec4(glm::vec3(n), float(-(shape.thin_lo - margin)));
   if (light_side < 0.0) return glm::vec4(glm::vec3(n), float(-(shape.thin_hi + margin)));
   return std::nullopt;
+}
+
+// The planes SplitPlanes::sampled weighs against the object's own (world, eye-relative): both
+// whole-volume rules (z-fail everywhere is the zero plane; z-pass everywhere is the plane
+// w = -z, whose camera side holds every tile) and, but for a flat object, whose own plane already
+// sends its whole volume behind the surfaces, Point-Camera-Light turned about the centre line
+// in steps of 15 degrees, tilted towards and away from the light, moved across by a quarter and
+// half of the object's radius, and Point-Point-Light. Thirty-seven planes in all.
+std::vector<glm::vec4> split_plane_candidates(const Shape& shape, float radius,
+                                              const glm::vec4& light) {
+  std::vector<glm::vec4> planes{glm::vec4(0.0f), glm::vec4(0.0f, 0.0f, 1.0f, 1.0f)};
+  if (shape.flat) return planes;
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  for (int turn = -75; turn <= 90; turn += 15)
+    planes.push_back(point_camera_light(shape.centroid, light, turn * kDegree));
+  for (const int turn : {-30, 0, 30}) {
+    const glm::vec4 turned = point_camera_light(shape.centroid, light, turn * kDegree);
+    if (turned == glm::vec4(0.0f)) continue;
+    for (const float across : {-0.5f, -0.25f, 0.25f, 0.5f})
+      planes.push_back(turned + glm::vec4(0.0f, 0.0f, 0.0f, across * radius));
+    for (const int tilt : {-30, -15, 15, 30})
+      planes.push_back(point_camera_light(shape.centroid, light, turn * kDegree, tilt * kDegree));
+  }
+  planes.push_back(point_point_light(shape.p1, shape.p2, light));
+  return planes;
 }
 
 // The far plane that ends an object's bounded volume (core/volume.h, Extrusion::bounded),
@@ -379,6 +413,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
   plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
   plan.prefill.assign(scene.lights.size(), std::vector<bool>(objects));
+  plan.split_alternatives.assign(scene.lights.size(), std::vector<std::vector<glm::vec4>>(objects));
   stats.zfail_lights.assign(objects, 0);
   const glm::mat4 plane_to_clip = glm::transpose(plan.inv_view_proj);  // planes map by M^-T
   const bool prefills =
@@ -407,6 +442,10 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
                       : point_camera_light(shape.centroid, plan.lights[l]);
         }
         plan.split[l][o] = plane_to_clip * *plane;
+        if (automatic && options.split_planes == SplitPlanes::sampled)
+          for (const glm::vec4& candidate :
+               split_plane_candidates(shape, bounds[o].radius, plan.lights[l]))
+            plan.split_alternatives[l][o].push_back(plane_to_clip * candidate);
       }
       (zfail              ? stats.objects_zfail
        : plan.split[l][o] ? stats.objects_split

@@ -37,6 +37,14 @@ Expected<Extrusion> parse_extrusion(std::string_view name) {
   return parse_name(name, {Extrusion::infinite, Extrusion::bounded}, "extrusion");
 }
 
+std::string_view to_string(SplitPlanes planes) {
+  return planes == SplitPlanes::laine ? "laine" : "sampled";
+}
+
+Expected<SplitPlanes> parse_split_planes(std::string_view name) {
+  return parse_name(name, {SplitPlanes::laine, SplitPlanes::sampled}, "split-plane construction");
+}
+
 Expected<void> check_options(const RenderOptions& options) {
   if (options.width < 1 || options.height < 1 || options.width > soft::kMaxViewport ||
       options.height > soft::kMaxViewport)

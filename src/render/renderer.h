@@ -51,12 +51,22 @@ enum class Extrusion : std::uint8_t { infinite, bounded };
 std::string_view to_string(Extrusion extrusion);
 Expected<Extrusion> parse_extrusion(std::string_view name);
 
+// How Method::split_plane gives an object with SplitPlaneChoice::automatic its split plane:
+// Laine 2005 §4's rule of thumb (Point-Camera-Light, Point-Point-Light for elongated objects, our
+// `flat` for flat ones), or that plane and 36 others weighed per volume and frame by counting the
+// volume's layers at one pixel in every 32 x 32 block (soft/split_sampler.h; the samples' work
+// is in the counters), taking the cheapest.
+enum class SplitPlanes : std::uint8_t { laine, sampled };
+std::string_view to_string(SplitPlanes planes);
+Expected<SplitPlanes> parse_split_planes(std::string_view name);
+
 struct RenderOptions {
   int width = 960;
   int height = 540;
   Method method = Method::automatic;
   Generator generator = Generator::automatic;
   Extrusion extrusion = Extrusion::infinite;
+  SplitPlanes split_planes = SplitPlanes::sampled;
   // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
   // one colour per light, so that a person can see the volumes.
   bool show_volumes = false;

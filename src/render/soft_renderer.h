@@ -17,6 +17,7 @@
 #include "render/frame_plan.h"
 #include "render/renderer.h"
 #include "soft/raster.h"
+#include "soft/split_sampler.h"
 
 namespace shadowvol {
 
@@ -40,7 +41,9 @@ class SoftRenderer final : public Renderer {
 
   VolumeCache volumes_;
   soft::Target target_;
+  soft::SplitPlaneSampler split_sampler_;
   std::vector<glm::vec4> tris_, prefill_tris_;  // kept between frames: no reallocation
+  std::vector<glm::vec4> planes_;               // a volume's split plane and its alternatives
   std::vector<std::int32_t> weights_, prefill_weights_;
   std::vector<glm::vec3> log_light_, eye_log_;
   std::vector<float> opaque_depth_;  // with transparent casters: the opaque layer's depths

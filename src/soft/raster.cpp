@@ -575,7 +575,8 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax)
       return TileDecision{TileVerdict::skip, tile_rule};
     const bool within_bounds = bounds.zmin <= tile.zmin && tile.zmax <= bounds.zmax;
-    const bool zpass = tile_rule != CountRule::zfail;  // cover tests depth as z-pass does
+    // cover tests depth as z-pass does, behind as z-fail does
+    const bool zpass = tile_rule != CountRule::zfail && tile_rule != CountRule::behind;
     const bool some = zpass ? zhi > tile.zmin : zlo <= tile.zmax;
     const bool all = zpass ? zlo > tile.zmax : zhi <= tile.zmin;
     return TileDecision{!some                  ? TileVerdict::skip
@@ -586,9 +587,10 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   const std::uint64_t passed_before = counters.pixels_passed;
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
-    // it subtract; cover: every face in front of it adds.
+    // it subtract; cover and behind: every face in front of it, or behind it, adds.
+    const bool unsigned_faces = rule == CountRule::cover || rule == CountRule::behind;
     const std::int32_t front_delta =
-        (p.setup.front || rule == CountRule::cover ? 1 : -1) * weights[p.triangle];
+        (p.setup.front || unsigned_faces ? 1 : -1) * weights[p.triangle];
     if (front_delta == 0) return;
     const float* depth = target.depth.data();
     std::int32_t* count = target.count.data();
@@ -600,8 +602,9 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
         // By value: the stores into count may alias anything an int32 reference names.
         [depth, count, bounds, front_delta](std::size_t first, const Mask& covered, const Floats& z,
                                             auto lanes, auto decided, CountRule tile_rule) {
-          const bool zpass = tile_rule != CountRule::zfail;  // so do prefill and cover
-          const std::int32_t delta = zpass ? front_delta : -front_delta;
+          // Depth as z-pass tests it: prefill and cover too; behind tests as z-fail does.
+          const bool zpass = tile_rule != CountRule::zfail && tile_rule != CountRule::behind;
+          const std::int32_t delta = tile_rule == CountRule::zfail ? -front_delta : front_delta;
           if constexpr (decided) {
             store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
                       lanes);

@@ -126,6 +126,9 @@ enum class CountRule {
   // Fragments in front of the stored depth add the weight whichever way they face: how many
   // surfaces lie between the eye and the stored one (the transparent surfaces seen through).
   cover,
+  // Fragments at or behind the stored depth add the weight whichever way they face: how many
+  // surfaces lie beyond the stored one (what z-fail would count there; soft/split_sampler.h).
+  behind,
 };
 
 // Which tiles a draw counts in, by the rule a split plane picks for them (Laine 2005 §3.3): a

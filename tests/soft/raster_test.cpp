@@ -128,25 +128,32 @@ TEST(Raster, BackFacesSubtractAndTheSharedEdgeIsDrawnOnce) {
   EXPECT_GT(on_edge, 10);
 }
 
-// CountRule::cover counts the surfaces in front of the stored depth whichever way they face:
-// a front face and a back face over a surface at depth 0.25 both add (z-pass would cancel
-// them), and a face behind it adds nothing.
-TEST(Raster, CoverCountsEveryFaceInFrontWhicheverWayItFaces) {
+// CountRule::cover counts the surfaces in front of the stored depth whichever way they face, and
+// CountRule::behind those behind it: a front face and a back face on the counted side of a
+// surface at depth 0.25 both add (z-pass or z-fail would cancel them), and a face on the other
+// side adds nothing.
+TEST(Raster, CoverAndBehindCountEveryFaceOnTheirSideWhicheverWayItFaces) {
   constexpr int w = 40, h = 40;
-  Target target(w, h);
-  target.clear_depth(0.25f);  // reversed depth: the faces at 0.5 are in front
-  target.update_tile_depth();
-  std::vector<glm::vec4> tris;
-  add_ndc(tris, {-0.8f, -0.8f}, {0.8f, -0.8f}, {0.0f, 0.8f});  // CCW: front
-  add_ndc(tris, {-0.8f, -0.8f}, {0.0f, 0.8f}, {0.8f, -0.8f});  // CW: back
-  for (const glm::vec2 a : {glm::vec2(-0.8f, -0.8f), glm::vec2(0.8f, -0.8f), glm::vec2(0, 0.8f)})
-    tris.emplace_back(a, 0.1f, 1.0f);  // behind the surface
-  Counters counters;
-  draw_counts(target, tris, std::vector<std::int32_t>(tris.size() / 3, 1), CountRule::cover,
-              counters);
-  EXPECT_EQ(target.count[static_cast<std::size_t>(h / 2) * w + w / 2], 2);
-  EXPECT_EQ(target.count[0], 0);  // outside the triangles
-  for (std::int32_t c : target.count) ASSERT_TRUE(c == 0 || c == 2);
+  struct Case {
+    CountRule rule;
+    float counted_depth, other_depth;  // reversed depth: 0.5 is in front of 0.25, 0.1 behind
+  };
+  for (const Case& c : {Case{CountRule::cover, 0.5f, 0.1f}, Case{CountRule::behind, 0.1f, 0.5f}}) {
+    Target target(w, h);
+    target.clear_depth(0.25f);
+    target.update_tile_depth();
+    std::vector<glm::vec4> tris;
+    add_ndc(tris, {-0.8f, -0.8f}, {0.8f, -0.8f}, {0.0f, 0.8f});  // CCW: front
+    add_ndc(tris, {-0.8f, -0.8f}, {0.0f, 0.8f}, {0.8f, -0.8f});  // CW: back
+    for (glm::vec4& v : tris) v.z = c.counted_depth;
+    for (const glm::vec2 a : {glm::vec2(-0.8f, -0.8f), glm::vec2(0.8f, -0.8f), glm::vec2(0, 0.8f)})
+      tris.emplace_back(a, c.other_depth, 1.0f);
+    Counters counters;
+    draw_counts(target, tris, std::vector<std::int32_t>(tris.size() / 3, 1), c.rule, counters);
+    EXPECT_EQ(target.count[static_cast<std::size_t>(h / 2) * w + w / 2], 2);
+    EXPECT_EQ(target.count[0], 0);  // outside the triangles
+    for (std::int32_t count : target.count) ASSERT_TRUE(count == 0 || count == 2);
+  }
 }
 
 // An eye-space quad crossing the near plane, and a shadow-volume-like triangle with two vertices

@@ -28,13 +28,15 @@ namespace {
 // Small images keep the suite quick under the sanitizers; every pixel is still compared.
 constexpr int kWidth = 192, kHeight = 108;
 
-// A backend and its settings, as `--backend --volumes --counts` choose them.
+// A backend and its settings, as `--backend --volumes --counts --split-planes` choose them.
 struct Variant {
   const char* name;
   Backend backend;
   gl::GlSettings gl;
+  SplitPlanes split_planes = SplitPlanes::sampled;  // for Method::split_plane
 };
 const Variant kSoft{"soft", Backend::soft, {}};
+const Variant kSoftLaine{"soft_laine_planes", Backend::soft, {}, SplitPlanes::laine};
 const Variant kGlCpu{"gl_cpu", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::automatic}};
 const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarget::automatic}};
 const Variant kGlAdditive{
@@ -55,7 +57,9 @@ Frame render(const Variant& variant, const Scene& scene, const RenderOptions& op
 
 Comparison verify(const Scene& scene, Method method, Generator generator = Generator::automatic,
                   const Variant& variant = kSoft, Extrusion extrusion = Extrusion::infinite) {
-  const Frame frame = render(variant, scene, {kWidth, kHeight, method, generator, extrusion});
+  RenderOptions options{kWidth, kHeight, method, generator, extrusion};
+  options.split_planes = variant.split_planes;
+  const Frame frame = render(variant, scene, options);
   if (frame.object.empty()) return {};
   auto reference = trace_reference(scene, kWidth, kHeight);
   EXPECT_TRUE(reference.ok()) << (reference ? "" : reference.error().message);
@@ -103,13 +107,19 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::ValuesIn(kVariants), ::testing::Values(Extrusion::infinite)),
     scene_method_name);
 
-// Split-plane shadow volumes (Laine 2005) and z-pass with the ZP+ pre-fill run in the software
-// backend only.
+// Split-plane shadow volumes (Laine 2005; planes sampled, and Laine's own) and z-pass with the
+// ZP+ pre-fill run in the software backend only.
 INSTANTIATE_TEST_SUITE_P(
     SoftOnly, BuiltinScenes,
-    ::testing::Combine(::testing::ValuesIn(kSceneNames),
-                       ::testing::Values(Method::split_plane, Method::zpass_prefill),
-                       ::testing::Values(kSoft), ::testing::Values(Extrusion::infinite)),
+    ::testing::Combine(::testing::ValuesIn(kSceneNames), ::testing::Values(Method::split_plane),
+                       ::testing::Values(kSoft, kSoftLaine),
+                       ::testing::Values(Extrusion::infinite, Extrusion::bounded)),
+    scene_method_name);
+INSTANTIATE_TEST_SUITE_P(
+    SoftOnlyPrefill, BuiltinScenes,
+    ::testing::Combine(::testing::ValuesIn(kSceneNames), ::testing::Values(Method::zpass_prefill),
+                       ::testing::Values(kSoft),
+                       ::testing::Values(Extrusion::infinite, Extrusion::bounded)),
     scene_method_name);
 
 // Volumes ended on a far plane beyond the scene (Extrusion::bounded), by every method and
@@ -121,12 +131,6 @@ INSTANTIATE_TEST_SUITE_P(Bounded, BuiltinScenes,
                                             ::testing::Values(kSoft, kGlCpu, kGlGpu),
                                             ::testing::Values(Extrusion::bounded)),
                          scene_method_name);
-INSTANTIATE_TEST_SUITE_P(
-    BoundedSoftOnly, BuiltinScenes,
-    ::testing::Combine(::testing::ValuesIn(kSceneNames),
-                       ::testing::Values(Method::split_plane, Method::zpass_prefill),
-                       ::testing::Values(kSoft), ::testing::Values(Extrusion::bounded)),
-    scene_method_name);
 
 // ZP+ (Hornus et al. 2005): with the near plane in a shadow volume, plain z-pass must fail and
 // z-pass from the near-plane pre-fill, alone (zp+db) or in a split plane's z-pass tiles (spsv),
@@ -164,11 +168,13 @@ TEST(NearPlanePrefill, MakesZPassExactWithTheEyeInShadow) {
     SCOPED_TRACE(c.name);
     EXPECT_GT(verify(c.scene, Method::zpass).mismatched_outside_band, 100u);
     for (Extrusion e : {Extrusion::infinite, Extrusion::bounded})
-      for (Method m : {Method::zpass_prefill, Method::split_plane}) {
-        const Comparison result = verify(c.scene, m, Generator::automatic, kSoft, e);
-        EXPECT_GT(result.pixels_compared, std::size_t{kWidth * kHeight / 4});
-        EXPECT_EQ(result.mismatched_outside_band, 0u) << to_string(m) << " " << to_string(e);
-      }
+      for (Method m : {Method::zpass_prefill, Method::split_plane})
+        for (const Variant& v : {kSoft, kSoftLaine}) {
+          const Comparison result = verify(c.scene, m, Generator::automatic, v, e);
+          EXPECT_GT(result.pixels_compared, std::size_t{kWidth * kHeight / 4});
+          EXPECT_EQ(result.mismatched_outside_band, 0u)
+              << to_string(m) << " " << v.name << " " << to_string(e);
+        }
   }
 }
 
@@ -462,8 +468,8 @@ TEST(TransparentCasters, TwelveLayersStayExact) {
   scene.camera = {{0.5f, 5.0f, 5.0f}, {0.0f, 0.0f, 0.0f}};
   scene.objects.push_back(
       make_object("ground", make_ground(4.0f), glm::mat4(1.0f), glm::vec3(0.9f)));
-  const Material materials[] = {{{1.0f, 0.8f, 0.0f}, 0.3f}, {{0.6f, 1.0f, 0.9f}, 0.2f},
-                                {{0.9f, 0.9f, 1.0f}, 0.1f}, {{1.0f, 0.5f, 0.5f}, 0.25f},
+  const Material materials[] = {{{1.0f, 0.8f, 0.0f}, 0.3f},  {{0.6f, 1.0f, 0.9f}, 0.2f},
+                                {{0.9f, 0.9f, 1.0f}, 0.1f},  {{1.0f, 0.5f, 0.5f}, 0.25f},
                                 {{0.7f, 0.9f, 0.0f}, 0.15f}, {{0.95f, 0.95f, 0.95f}, 0.05f}};
   for (int i = 0; i < 12; ++i) {
     Mesh sheet;
