@@ -42,11 +42,14 @@ struct Series {
   std::vector<std::uint64_t> tiles_processed, nonculled_tiles, pixels_processed, pixels_updated;
   std::vector<double> count_ms;
 
+  // The count passes' work and the split-plane sampler's: what the method cost in all.
   void add(const FrameStats& s) {
-    tiles_processed.push_back(s.counts.tiles_touched);
-    nonculled_tiles.push_back(s.counts.tiles_touched - s.counts.tiles_skipped);
-    pixels_processed.push_back(s.counts.pixels_processed);
-    pixels_updated.push_back(s.counts.count_updates);
+    soft::Counters c = s.counts;
+    c += s.split_sampling;
+    tiles_processed.push_back(c.tiles_touched);
+    nonculled_tiles.push_back(c.tiles_touched - c.tiles_skipped);
+    pixels_processed.push_back(c.pixels_processed);
+    pixels_updated.push_back(c.count_updates);
     count_ms.push_back(s.ms_counts);
   }
 };

@@ -418,6 +418,15 @@ int render(const RenderArgs& args) {
           (unsigned long long)s.counts.tiles_touched, (unsigned long long)s.counts.tiles_skipped,
           (unsigned long long)s.counts.pixels_processed,
           (unsigned long long)s.counts.count_updates);
+    if (s.split_sampling.triangles_in > 0)
+      std::printf(
+          "  split-plane sampling: %llu triangles in, %llu tiles touched, %llu skipped, %llu "
+          "samples processed, %llu counted\n",
+          (unsigned long long)s.split_sampling.triangles_in,
+          (unsigned long long)s.split_sampling.tiles_touched,
+          (unsigned long long)s.split_sampling.tiles_skipped,
+          (unsigned long long)s.split_sampling.pixels_processed,
+          (unsigned long long)s.split_sampling.count_updates);
   }
   return 0;
 }
@@ -557,6 +566,7 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
       sum.ms_readback += f.stats.ms_readback;
       sum.volume_primitives += f.stats.volume_primitives;
       sum.counts += f.stats.counts;
+      sum.split_sampling += f.stats.split_sampling;
     }
     status.clear();
     const double n = frames;
@@ -587,6 +597,12 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
                            {"tiles_skipped", c.tiles_skipped / frames},
                            {"pixels_processed", c.pixels_processed / frames},
                            {"count_updates", c.count_updates / frames}};
+      const soft::Counters& sampled = sum.split_sampling;
+      row["split_sampling"] = {{"triangles", sampled.triangles_in / frames},
+                               {"tiles_touched", sampled.tiles_touched / frames},
+                               {"tiles_skipped", sampled.tiles_skipped / frames},
+                               {"pixels_processed", sampled.pixels_processed / frames},
+                               {"count_updates", sampled.count_updates / frames}};
     }
     if (json) {
       out.push_back(row);

@@ -93,6 +93,10 @@ struct FrameStats {
   std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for
   int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work
   soft::Counters depth, counts;
+  // Software backend, SplitPlanes::sampled: the split-plane sampler's own drawing (on a target of
+  // one pixel per sampled tile), apart from `counts` and from the tile work, since its samples
+  // are not the frame's pixels; what spsv cost in all is the two together.
+  soft::Counters split_sampling;
 };
 
 // One layer of surfaces: what each pixel shows in it, and per light how much of the light

@@ -89,7 +89,7 @@ void SoftRenderer::count_volume(const Pass& pass, std::size_t l, std::size_t o) 
     planes_.insert(planes_.end(), alternatives.begin(), alternatives.end());
     split = planes_[split_sampler_.cheapest(target_, all_tris.first(3 * everywhere),
                                             all_tris.subspan(3 * everywhere), bounds, planes_,
-                                            stats.counts)];
+                                            stats.split_sampling)];
   }
   if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
     prefill_tris_.clear();
