@@ -166,7 +166,7 @@ std::optional<glm::vec4> flat_plane(const Shape& shape, const glm::vec4& light) 
 // w = -z, whose camera side holds every tile) and, but for a flat object, whose own plane already
 // sends its whole volume behind the surfaces, Point-Camera-Light turned about the centre line
 // in steps of 15 degrees, tilted towards and away from the light, moved across by a quarter and
-// half of the object's radius, and Point-Point-Light. Thirty-seven planes in all.
+// half of the object's radius, and Point-Point-Light: 39 planes (2 for a flat object).
 std::vector<glm::vec4> split_plane_candidates(const Shape& shape, float radius,
                                               const glm::vec4& light) {
   std::vector<glm::vec4> planes{glm::vec4(0.0f), glm::vec4(0.0f, 0.0f, 1.0f, 1.0f)};
@@ -413,7 +413,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
   plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
   plan.prefill.assign(scene.lights.size(), std::vector<bool>(objects));
-  plan.split_alternatives.assign(scene.lights.size(), std::vector<std::vector<glm::vec4>>(objects));
+  plan.split_candidates.assign(scene.lights.size(), std::vector<std::vector<glm::vec4>>(objects));
   stats.zfail_lights.assign(objects, 0);
   const glm::mat4 plane_to_clip = glm::transpose(plan.inv_view_proj);  // planes map by M^-T
   const bool prefills =
@@ -442,10 +442,13 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
                       : point_camera_light(shape.centroid, plan.lights[l]);
         }
         plan.split[l][o] = plane_to_clip * *plane;
-        if (automatic && options.split_planes == SplitPlanes::sampled)
+        if (automatic && options.split_planes == SplitPlanes::sampled) {
+          std::vector<glm::vec4>& candidates = plan.split_candidates[l][o];
+          candidates.assign(1, *plan.split[l][o]);
           for (const glm::vec4& candidate :
                split_plane_candidates(shape, bounds[o].radius, plan.lights[l]))
-            plan.split_alternatives[l][o].push_back(plane_to_clip * candidate);
+            candidates.push_back(plane_to_clip * candidate);
+        }
       }
       (zfail              ? stats.objects_zfail
        : plan.split[l][o] ? stats.objects_split

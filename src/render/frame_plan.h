@@ -39,11 +39,12 @@ struct FramePlan {
   // 2005 §4: Point-Camera-Light or Point-Point-Light; or ours, `flat`, as the object's
   // SplitPlaneChoice says); none where the volume is drawn by one rule whole.
   std::vector<std::vector<std::optional<glm::vec4>>> split;
-  // [light][object]: under SplitPlaneChoice::automatic and SplitPlanes::sampled, further planes
-  // (clip space) the software backend weighs against split[l][o] by sampling the frame's tiles
-  // (soft/split_sampler.h), taking the cheapest: both whole-volume rules, and but for flat
-  // objects Point-Camera-Light turned, tilted and moved, and Point-Point-Light. Else empty.
-  std::vector<std::vector<std::vector<glm::vec4>>> split_alternatives;
+  // [light][object]: under SplitPlaneChoice::automatic and SplitPlanes::sampled, the planes
+  // (clip space) the software backend weighs by sampling the frame's tiles
+  // (soft/split_sampler.h), drawing by the cheapest: split[l][o] first, then both whole-volume
+  // rules and, but for flat objects, Point-Camera-Light turned, tilted and moved, and
+  // Point-Point-Light. Else empty.
+  std::vector<std::vector<std::vector<glm::vec4>>> split_candidates;
   // [light][object]: z-pass counts of this volume start from the near-plane pre-fill (ZP+):
   // under Method::zpass_prefill, and in a split plane's z-pass tiles, where the volume may
   // reach the near plane.

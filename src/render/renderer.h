@@ -53,9 +53,10 @@ Expected<Extrusion> parse_extrusion(std::string_view name);
 
 // How Method::split_plane gives an object with SplitPlaneChoice::automatic its split plane:
 // Laine 2005 §4's rule of thumb (Point-Camera-Light, Point-Point-Light for elongated objects, our
-// `flat` for flat ones), or that plane and 36 others weighed per volume and frame by counting the
-// volume's layers at one pixel in every 32 x 32 block (soft/split_sampler.h; the samples' work
-// is in the counters), taking the cheapest.
+// `flat` for flat ones), or that plane and 39 others (2 for flat objects) weighed per volume and
+// frame by counting the volume's layers at one pixel in every 32 x 32 block
+// (soft/split_sampler.h; the samples' work is in FrameStats::split_sampling), taking the
+// cheapest.
 enum class SplitPlanes : std::uint8_t { laine, sampled };
 std::string_view to_string(SplitPlanes planes);
 Expected<SplitPlanes> parse_split_planes(std::string_view name);

@@ -83,14 +83,10 @@ void SoftRenderer::count_volume(const Pass& pass, std::size_t l, std::size_t o) 
   if (plan.prefill[l][o]) bounds.zmin = 0.0f;
   const std::span<const glm::vec4> all_tris(tris_);
   const std::span<const std::int32_t> all_weights(weights_);
-  if (const std::vector<glm::vec4>& alternatives = plan.split_alternatives[l][o];
-      split && !alternatives.empty()) {
-    planes_.assign(1, *split);
-    planes_.insert(planes_.end(), alternatives.begin(), alternatives.end());
-    split = planes_[split_sampler_.cheapest(target_, all_tris.first(3 * everywhere),
-                                            all_tris.subspan(3 * everywhere), bounds, planes_,
-                                            stats.split_sampling)];
-  }
+  if (const std::vector<glm::vec4>& candidates = plan.split_candidates[l][o]; !candidates.empty())
+    split = candidates[split_sampler_.cheapest(target_, all_tris.first(3 * everywhere),
+                                               all_tris.subspan(3 * everywhere), bounds, candidates,
+                                               stats.split_sampling)];
   if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
     prefill_tris_.clear();
     prefill_weights_.clear();

@@ -43,7 +43,6 @@ class SoftRenderer final : public Renderer {
   soft::Target target_;
   soft::SplitPlaneSampler split_sampler_;
   std::vector<glm::vec4> tris_, prefill_tris_;  // kept between frames: no reallocation
-  std::vector<glm::vec4> planes_;               // a volume's split plane and its alternatives
   std::vector<std::int32_t> weights_, prefill_weights_;
   std::vector<glm::vec3> log_light_, eye_log_;
   std::vector<float> opaque_depth_;  // with transparent casters: the opaque layer's depths

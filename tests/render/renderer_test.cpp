@@ -39,7 +39,6 @@ TEST(Renderer, FrameDoesNotDependOnTheThreadCount) {
   EXPECT_GT(frames[0].stats.counts.count_updates, 1000u);
 }
 
-// Per-tile work adds up to the frame's counters, and the heatmap shows it where it happened.
 // SplitPlanes::sampled draws samples before each volume of an object left to `auto`, and counts
 // their work apart from the count passes' (FrameStats::split_sampling); Laine's planes draw none,
 // and neither does an object whose plane the scene fixes. Candidates: the plane Laine's rule
@@ -56,17 +55,18 @@ TEST(Renderer, SampledSplitPlanesCountTheirSamplesApart) {
   const FramePlan plan = plan_frame(*scene, options, stats);
   for (std::size_t o = 0; o < scene->objects.size(); ++o) {
     ASSERT_TRUE(plan.split[0][o].has_value());
-    EXPECT_GE(plan.split_alternatives[0][o].size(), 2u);  // at least both whole-volume rules
+    EXPECT_GE(plan.split_candidates[0][o].size(), 2u);  // at least both whole-volume rules
   }
   options.split_planes = SplitPlanes::laine;
   EXPECT_EQ(renderer.render(*scene, options).stats.split_sampling.triangles_in, 0u);
-  EXPECT_TRUE(plan_frame(*scene, options, stats).split_alternatives[0][0].empty());
+  EXPECT_TRUE(plan_frame(*scene, options, stats).split_candidates[0][0].empty());
   options.split_planes = SplitPlanes::sampled;
   for (SceneObject& object : scene->objects)
     object.split_plane = SplitPlaneChoice::point_camera_light;
   EXPECT_EQ(renderer.render(*scene, options).stats.split_sampling.triangles_in, 0u);
 }
 
+// Per-tile work adds up to the frame's counters, and the heatmap shows it where it happened.
 TEST(Renderer, TileWorkAddsUpToTheCountersAndTheHeatmapShowsIt) {
   auto scene = builtin_scene("demo");
   ASSERT_TRUE(scene.ok());
