@@ -226,6 +226,7 @@ struct FrameArgs {
   std::string counts = "auto";
   std::string extrusion = "infinite";
   std::string split_planes = "sampled";
+  std::string split_parts = "each";
 };
 
 // `with_backend`: false for the viewer, which is OpenGL by nature.
@@ -248,6 +249,12 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, const std::string& scene_
                   "spsv: laine (Laine 2005's Point-Camera-Light / Point-Point-Light, flat for "
                   "flat objects) or sampled (that plane and 39 others, the cheapest on a sample "
                   "of each volume's tiles)")
+      ->capture_default_str();
+  cmd->add_option("--split-parts", args.split_parts,
+                  "spsv: each (a split plane for each connected part of a caster, up to " +
+                      std::to_string(kMaxSplitParts) +
+                      " parts, as Laine 2005 sec. 6 decomposes casters) or whole (one plane per "
+                      "object)")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   if (with_backend)
@@ -274,11 +281,14 @@ struct ResolvedFrame {
 };
 
 // The method as the command line reports it, "(Laine's planes)" after spsv where they are not
-// sampled, "(bounded)" where volumes are.
+// sampled, "(one plane per object)" where parts do not get their own, "(bounded)" where volumes
+// are.
 std::string method_label(const RenderOptions& options) {
-  const bool laine =
-      options.method == Method::split_plane && options.split_planes == SplitPlanes::laine;
+  const bool split = options.method == Method::split_plane;
+  const bool laine = split && options.split_planes == SplitPlanes::laine;
+  const bool whole = split && options.split_parts == SplitParts::whole;
   return std::string(to_string(options.method)) + (laine ? " (Laine's planes)" : "") +
+         (whole ? " (one plane per object)" : "") +
          (options.extrusion == Extrusion::bounded ? " (bounded)" : "");
 }
 
@@ -315,8 +325,11 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!extrusion) return make_error("--extrusion: " + extrusion.error().message);
   auto split_planes = parse_split_planes(args.split_planes);
   if (!split_planes) return make_error("--split-planes: " + split_planes.error().message);
+  auto split_parts = parse_split_parts(args.split_parts);
+  if (!split_parts) return make_error("--split-parts: " + split_parts.error().message);
   RenderOptions options{size->first, size->second, *method, *generator, *extrusion};
   options.split_planes = *split_planes;
+  options.split_parts = *split_parts;
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   auto backend = parse_backend(args.backend);
   if (!backend) return make_error("--backend: " + backend.error().message);
@@ -466,6 +479,7 @@ int verify(const VerifyArgs& args) {
                                 {"generator", std::string(to_string(options.generator))},
                                 {"extrusion", std::string(to_string(options.extrusion))},
                                 {"split_planes", std::string(to_string(options.split_planes))},
+                                {"split_parts", std::string(to_string(options.split_parts))},
                                 {"backend", backend},
                                 {"frame", args.frame_number},
                                 {"width", options.width},
@@ -577,6 +591,7 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
                        {"method", std::string(to_string(options.method))},
                        {"extrusion", std::string(to_string(options.extrusion))},
                        {"split_planes", std::string(to_string(options.split_planes))},
+                       {"split_parts", std::string(to_string(options.split_parts))},
                        {"volumes", args.volumes},
                        {"frames", frames},
                        {"frame_ms", wall / n},
@@ -753,7 +768,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--suite", bench_suite,
                         "Run a measurement suite instead: spsv (Laine 2005's counters over the "
                         "animated knight, knights16, tree and tree-decomposed, with zp+db, zf+db, "
-                        "spsv and spsv-laine; 1024x768 unless --size)");
+                        "spsv, spsv-laine and spsv-whole; 1024x768 unless --size)");
   bench_cmd->add_option("--csv", bench_csv,
                         "With --suite: write one row per scene, method and frame to this file");
   bench_cmd->add_option("--plot", bench_plot,

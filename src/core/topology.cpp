@@ -208,10 +208,14 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
   r.closed_manifold =
       r.edges > 0 && r.boundary_edges == 0 && r.nonmanifold_edges == 0 && r.inconsistent_edges == 0;
 
-  std::vector<bool> used(topo.positions.size(), false);
-  for (std::uint32_t v : topo.face_vertices) used[v] = true;
-  for (std::uint32_t v = 0; v < topo.positions.size(); ++v)
-    if (used[v] && components.find(v) == v) ++r.components;
+  // Parts numbered in face order: a part's number is given at its first face's first vertex.
+  topo.vertex_part.assign(topo.positions.size(), Topology::kNoPart);
+  std::vector<std::uint32_t> part_of_root(topo.positions.size(), Topology::kNoPart);
+  for (const std::uint32_t v : topo.face_vertices) {
+    std::uint32_t& part = part_of_root[components.find(v)];
+    if (part == Topology::kNoPart) part = static_cast<std::uint32_t>(r.components++);
+    topo.vertex_part[v] = part;
+  }
   return topo;
 }
 

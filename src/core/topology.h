@@ -94,6 +94,15 @@ struct Topology {
   std::vector<std::uint32_t> irregular_offsets;  // irregular edges + 1 entries
   std::vector<std::uint32_t> irregular_faces;
 
+  // Parts: the sets of faces joined through shared (welded) vertices, numbered 0 .. part_count()
+  // - 1 in order of each one's first face. The part of every vertex a face uses, kNoPart for a
+  // vertex no face uses. Every edge lies in one part, so each part's volume is a whole volume of
+  // its own (core/volume.h: VolumeOptions::parts), and Laine 2005 §6's decomposition of a caster
+  // into sub-objects can give each part its own split plane at no cost in side quads.
+  static constexpr std::uint32_t kNoPart = 0xffffffffu;
+  std::vector<std::uint32_t> vertex_part;
+  std::size_t part_count() const { return report.components; }
+
   // --- build products kept for callers ---
   std::vector<std::uint32_t> vertex_remap;  // input vertex index -> welded vertex index
   TopologyReport report;

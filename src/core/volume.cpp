@@ -14,25 +14,30 @@
 namespace shadowvol {
 namespace {
 
+// The weight, and the part where the span records parts, of one primitive; then past it.
+inline void finish_primitive(int corners, int weight, std::uint32_t part, PrimitiveSpan& out) {
+  out.weights[0] = weight;
+  out.vertices += corners;
+  out.weights += 1;
+  if (out.parts != nullptr) *out.parts++ = part;
+}
+
 inline void write_quad(const glm::vec3& u, const glm::vec3& v, const glm::vec4& light,
-                       const glm::vec4& far_plane, int weight, PrimitiveSpan& out) {
+                       const glm::vec4& far_plane, int weight, std::uint32_t part,
+                       PrimitiveSpan& out) {
   out.vertices[0] = glm::vec4(u, 1.0f);
   out.vertices[1] = extrude(u, light, far_plane);
   out.vertices[2] = extrude(v, light, far_plane);
   out.vertices[3] = glm::vec4(v, 1.0f);
-  out.weights[0] = weight;
-  out.vertices += kQuadCorners;
-  out.weights += 1;
+  finish_primitive(kQuadCorners, weight, part, out);
 }
 
 inline void write_triangle(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, int weight,
-                           PrimitiveSpan& out) {
+                           std::uint32_t part, PrimitiveSpan& out) {
   out.vertices[0] = a;
   out.vertices[1] = b;
   out.vertices[2] = c;
-  out.weights[0] = weight;
-  out.vertices += kTriangleCorners;
-  out.weights += 1;
+  finish_primitive(kTriangleCorners, weight, part, out);
 }
 
 // The signed contribution of one face to an irregular edge's multiplicity (Kim et al. §1.2).
@@ -84,11 +89,13 @@ Expected<void> check_light(const glm::vec4& light) {
   return {};
 }
 
-PrimitiveSpan PrimitiveList::grow(std::size_t primitives, int corners) {
+PrimitiveSpan PrimitiveList::grow(std::size_t primitives, int corners, bool with_parts) {
   const std::size_t vertex_start = vertices.size(), weight_start = weights.size();
   vertices.resize(vertex_start + primitives * static_cast<std::size_t>(corners));
   weights.resize(weight_start + primitives);
-  return {vertices.data() + vertex_start, weights.data() + weight_start};
+  if (with_parts) parts.resize(weight_start + primitives);
+  return {vertices.data() + vertex_start, weights.data() + weight_start,
+          with_parts ? parts.data() + weight_start : nullptr};
 }
 
 std::string_view to_string(Generator generator) {
@@ -268,24 +275,27 @@ void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& 
       const int w0 = w[faces[e][0]], w1 = w[faces[e][1]];
       const glm::vec3& u = positions[vertices[e][0]];
       const glm::vec3& v = positions[vertices[e][1]];
+      const std::uint32_t part = out.parts != nullptr ? topo.vertex_part[vertices[e][0]] : 0;
       if (!robust) {
-        write_quad(u, v, light, far_plane, w0 - w1, out);
+        write_quad(u, v, light, far_plane, w0 - w1, part, out);
       } else {
-        if (w0 != 0) write_quad(u, v, light, far_plane, w0, out);
-        if (w1 != 0) write_quad(u, v, light, far_plane, -w1, out);
+        if (w0 != 0) write_quad(u, v, light, far_plane, w0, part, out);
+        if (w1 != 0) write_quad(u, v, light, far_plane, -w1, part, out);
       }
       continue;
     }
     const std::size_t i = e - regular;
     const glm::vec3& u = positions[topo.irregular_vertices[i][0]];
     const glm::vec3& v = positions[topo.irregular_vertices[i][1]];
+    const std::uint32_t part =
+        out.parts != nullptr ? topo.vertex_part[topo.irregular_vertices[i][0]] : 0;
     int multiplicity = 0;
     for (std::uint32_t ref : irregular_refs(topo, i)) {
       const int term = edge_term(w, ref);
-      if (robust && term != 0) write_quad(u, v, light, far_plane, term, out);
+      if (robust && term != 0) write_quad(u, v, light, far_plane, term, part, out);
       multiplicity += term;
     }
-    if (!robust) write_quad(u, v, light, far_plane, multiplicity, out);
+    if (!robust) write_quad(u, v, light, far_plane, multiplicity, part, out);
   }
 }
 
@@ -316,12 +326,13 @@ void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& f
     const glm::vec3& a = topo.positions[fv[3 * f]];
     const glm::vec3& b = topo.positions[fv[3 * f + 1]];
     const glm::vec3& d = topo.positions[fv[3 * f + 2]];
+    const std::uint32_t part = light_caps.parts != nullptr ? topo.vertex_part[fv[3 * f]] : 0;
     if (c.light != 0)
-      write_triangle(glm::vec4(a, 1.0f), glm::vec4(b, 1.0f), glm::vec4(d, 1.0f), c.light,
+      write_triangle(glm::vec4(a, 1.0f), glm::vec4(b, 1.0f), glm::vec4(d, 1.0f), c.light, part,
                      light_caps);
     if (c.dark != 0)
       write_triangle(extrude(a, light, far_plane), extrude(b, light, far_plane),
-                     extrude(d, light, far_plane), c.dark, dark_caps);
+                     extrude(d, light, far_plane), c.dark, part, dark_caps);
   }
 }
 
@@ -335,14 +346,14 @@ void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOpti
   const std::size_t quads =
       find_casting_edges(topo, generator, scratch.weights, {0, topo.edge_count()}, scratch.casting);
   write_sides(topo, light, options.far_plane, generator, scratch.weights, scratch.casting,
-              out.sides.grow(quads, kQuadCorners));
+              out.sides.grow(quads, kQuadCorners, options.parts));
   if (!options.caps) return;
   const IndexRange all_faces{0, topo.face_count()};
   const CapCount caps =
       count_caps(topo, light, options.far_plane, generator, scratch.weights, all_faces);
   write_caps(topo, light, options.far_plane, generator, scratch.weights, all_faces,
-             out.light_caps.grow(caps.light, kTriangleCorners),
-             out.dark_caps.grow(caps.dark, kTriangleCorners));
+             out.light_caps.grow(caps.light, kTriangleCorners, options.parts),
+             out.dark_caps.grow(caps.dark, kTriangleCorners, options.parts));
 }
 
 }  // namespace shadowvol

@@ -115,25 +115,32 @@ struct UninitializedAllocator : std::allocator<T> {
 template <class T>
 using VolumeVector = std::vector<T, UninitializedAllocator<T>>;
 
-// Where a writer puts primitives: `vertices` has room for kCorners per primitive, `weights` one.
+// Where a writer puts primitives: `vertices` has room for kCorners per primitive, `weights` one,
+// and `parts`, where not null, one.
 struct PrimitiveSpan {
   glm::vec4* vertices = nullptr;
   std::int32_t* weights = nullptr;
+  std::uint32_t* parts = nullptr;
 };
 
 // A list of volume primitives of one kind: `vertices` holds kCorners homogeneous vertices per
-// primitive, `weights` one signed weight per primitive.
+// primitive, `weights` one signed weight per primitive, and `parts` (only where the volume was
+// built with VolumeOptions::parts, else empty) the part of the mesh (Topology::vertex_part) that
+// cast each one.
 struct PrimitiveList {
   VolumeVector<glm::vec4> vertices;
   VolumeVector<std::int32_t> weights;
+  VolumeVector<std::uint32_t> parts;
 
   std::size_t size() const { return weights.size(); }
   void clear() {
     vertices.clear();
     weights.clear();
+    parts.clear();
   }
-  // Makes room for `primitives` more of `corners` vertices each, uninitialised, and says where.
-  PrimitiveSpan grow(std::size_t primitives, int corners);
+  // Makes room for `primitives` more of `corners` vertices each, and their parts if `with_parts`,
+  // uninitialised, and says where.
+  PrimitiveSpan grow(std::size_t primitives, int corners, bool with_parts = false);
 };
 
 // The caller owns it and reuses it from frame to frame: clear() keeps the capacity, so a frame
@@ -217,6 +224,10 @@ struct VolumeOptions {
   Generator generator = Generator::automatic;
   bool caps = true;  // only z-fail needs caps; z-pass draws the sides alone
   glm::vec4 far_plane = kPlaneAtInfinity;
+  // Also record the part of every primitive (PrimitiveList::parts): the primitives of one part are
+  // exactly the volume that part alone casts, since every edge and face lies in one part, so a
+  // renderer may count each part by a rule of its own (Laine 2005 §6).
+  bool parts = false;
 
   bool operator==(const VolumeOptions&) const = default;
 };

@@ -377,7 +377,9 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     glm::vec3 lo, hi;  // the bounding box
     glm::vec3 centre;  // of the box
     float radius;      // of the sphere about it
-    Shape shape;
+    // For split planes: the shape of the whole object, or of each of its parts, and the radius
+    // of the sphere about its box.
+    std::vector<std::pair<Shape, float>> casters;
   };
   std::vector<Bounds> bounds(objects);
   const bool bounded = options.extrusion == Extrusion::bounded;
@@ -385,15 +387,29 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
   for (const glm::vec3& c : near_rect)
     reach_lo = glm::min(reach_lo, c), reach_hi = glm::max(reach_hi, c);
   for (std::size_t o = 0; o < objects; ++o) {
+    const Topology& topo = *scene.objects[o].topology;
+    const bool by_part = options.method == Method::split_plane &&
+                         options.split_parts == SplitParts::each && topo.part_count() >= 2 &&
+                         topo.part_count() <= kMaxSplitParts;
     glm::vec3 lo(INFINITY), hi(-INFINITY);
-    std::vector<glm::vec3> points;
-    for (const glm::vec3& p : scene.objects[o].topology->positions) {
-      const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(p, 1.0f));
+    std::vector<std::vector<glm::vec3>> points(by_part ? topo.part_count() : 1);
+    for (std::size_t v = 0; v < topo.positions.size(); ++v) {
+      const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(topo.positions[v], 1.0f));
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
-      if (options.method == Method::split_plane) points.push_back(q);
+      if (options.method != Method::split_plane) continue;
+      if (!by_part)
+        points[0].push_back(q);
+      else if (topo.vertex_part[v] != Topology::kNoPart)
+        points[topo.vertex_part[v]].push_back(q);
     }
-    bounds[o] = {lo, hi, (lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, shape_of(points)};
+    bounds[o] = {lo, hi, (lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, {}};
+    for (const std::vector<glm::vec3>& part : points) {
+      glm::vec3 part_lo(INFINITY), part_hi(-INFINITY);
+      for (const glm::vec3& q : part)
+        part_lo = glm::min(part_lo, q), part_hi = glm::max(part_hi, q);
+      bounds[o].casters.emplace_back(shape_of(part), glm::length(part_hi - part_lo) * 0.5f);
+    }
     reach_lo = glm::min(reach_lo, lo);
     reach_hi = glm::max(reach_hi, hi);
   }
@@ -411,9 +427,8 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
             box_volume_depth_bounds(bounds[o].lo, bounds[o].hi, plan.lights[l],
                                     plan.far_plane[l][o], plan.view_proj, near_rect);
   plan.zfail.assign(scene.lights.size(), std::vector<bool>(objects));
-  plan.split.assign(scene.lights.size(), std::vector<std::optional<glm::vec4>>(objects));
+  plan.split.assign(scene.lights.size(), std::vector<std::vector<FramePlan::PartSplit>>(objects));
   plan.prefill.assign(scene.lights.size(), std::vector<bool>(objects));
-  plan.split_candidates.assign(scene.lights.size(), std::vector<std::vector<glm::vec4>>(objects));
   stats.zfail_lights.assign(objects, 0);
   const glm::mat4 plane_to_clip = glm::transpose(plan.inv_view_proj);  // planes map by M^-T
   const bool prefills =
@@ -428,10 +443,10 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
       const bool zfail = options.method == Method::zfail || (reaches_near && !can_prefill);
       plan.zfail[l][o] = zfail;
       plan.prefill[l][o] = reaches_near && can_prefill;
-      if (options.method == Method::split_plane && !zfail) {
-        const SplitPlaneChoice choice = scene.objects[o].split_plane;
-        const Shape& shape = bounds[o].shape;
-        const bool automatic = choice == SplitPlaneChoice::automatic;
+      const SplitPlaneChoice choice = scene.objects[o].split_plane;
+      const bool automatic = choice == SplitPlaneChoice::automatic;
+      for (const auto& [shape, radius] : bounds[o].casters) {
+        if (options.method != Method::split_plane || zfail) break;
         std::optional<glm::vec4> plane;  // world, eye-relative
         if (choice == SplitPlaneChoice::flat || (automatic && shape.flat))
           plane = flat_plane(shape, plan.lights[l]);  // none edge-on: then as below
@@ -441,18 +456,17 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
           plane = ppl ? point_point_light(shape.p1, shape.p2, plan.lights[l])
                       : point_camera_light(shape.centroid, plan.lights[l]);
         }
-        plan.split[l][o] = plane_to_clip * *plane;
+        FramePlan::PartSplit& split = plan.split[l][o].emplace_back();
+        split.plane = plane_to_clip * *plane;
         if (automatic && options.split_planes == SplitPlanes::sampled) {
-          std::vector<glm::vec4>& candidates = plan.split_candidates[l][o];
-          candidates.assign(1, *plan.split[l][o]);
-          for (const glm::vec4& candidate :
-               split_plane_candidates(shape, bounds[o].radius, plan.lights[l]))
-            candidates.push_back(plane_to_clip * candidate);
+          split.candidates.assign(1, split.plane);
+          for (const glm::vec4& candidate : split_plane_candidates(shape, radius, plan.lights[l]))
+            split.candidates.push_back(plane_to_clip * candidate);
         }
       }
-      (zfail              ? stats.objects_zfail
-       : plan.split[l][o] ? stats.objects_split
-                          : stats.objects_zpass) += 1;
+      (zfail                       ? stats.objects_zfail
+       : !plan.split[l][o].empty() ? stats.objects_split
+                                   : stats.objects_zpass) += 1;
       stats.zfail_lights[o] += zfail;
     }
   }
@@ -489,7 +503,7 @@ std::vector<bool> VolumeCache::update(const Scene& scene, const FramePlan& plan,
     const SceneObject& object = scene.objects[o];
     const glm::vec4 object_light = object_space_light(object, scene.lights[light].position);
     const VolumeOptions options{object_generator(object, generator), plan.builds_caps(light, o),
-                                plan.object_far_plane(light, o)};
+                                plan.object_far_plane(light, o), plan.splits_by_part(light, o)};
     Entry& c = cache[o];
     if (c.topology == object.topology && c.light == object_light && c.options == options) {
       ++stats.volumes_reused;

@@ -35,16 +35,21 @@ struct FramePlan {
   // than there are objects, the total.
   std::vector<std::uint32_t> first_id;
   std::vector<std::vector<bool>> zfail;  // [light][object]: draw this volume by z-fail
-  // [light][object]: under Method::split_plane, the volume's split plane in clip space (Laine
-  // 2005 §4: Point-Camera-Light or Point-Point-Light; or ours, `flat`, as the object's
-  // SplitPlaneChoice says); none where the volume is drawn by one rule whole.
-  std::vector<std::vector<std::optional<glm::vec4>>> split;
-  // [light][object]: under SplitPlaneChoice::automatic and SplitPlanes::sampled, the planes
-  // (clip space) the software backend weighs by sampling the frame's tiles
-  // (soft/split_sampler.h), drawing by the cheapest: split[l][o] first, then both whole-volume
-  // rules and, but for flat objects, Point-Camera-Light turned, tilted and moved, and
-  // Point-Point-Light. Else empty.
-  std::vector<std::vector<std::vector<glm::vec4>>> split_candidates;
+  // Under Method::split_plane, how the tiles of one part of a volume choose their rule. `plane`:
+  // its split plane in clip space (Laine 2005 §4: Point-Camera-Light or Point-Point-Light; or
+  // ours, `flat`, as the object's SplitPlaneChoice says). `candidates`: under
+  // SplitPlaneChoice::automatic and SplitPlanes::sampled, the planes (clip space) the software
+  // backend weighs by sampling the frame's tiles (soft/split_sampler.h), drawing by the cheapest:
+  // `plane` first, then both whole-volume rules and, but for flat parts, Point-Camera-Light
+  // turned, tilted and moved, and Point-Point-Light; else empty.
+  struct PartSplit {
+    glm::vec4 plane{0.0f};
+    std::vector<glm::vec4> candidates;
+  };
+  // [light][object]: under Method::split_plane, one PartSplit per part of the object
+  // (Topology::vertex_part) under SplitParts::each, or one for the whole volume; none where the
+  // volume is drawn by one rule whole.
+  std::vector<std::vector<std::vector<PartSplit>>> split;
   // [light][object]: z-pass counts of this volume start from the near-plane pre-fill (ZP+):
   // under Method::zpass_prefill, and in a split plane's z-pass tiles, where the volume may
   // reach the near plane.
@@ -71,8 +76,11 @@ struct FramePlan {
   // Whether the volume of object o for light l counts its caps: z-fail does, and so do a split
   // plane's z-fail tiles. The volume is built with caps also where the pre-fill projects them.
   bool counts_caps(std::size_t l, std::size_t o) const {
-    return zfail[l][o] || split[l][o].has_value();
+    return zfail[l][o] || !split[l][o].empty();
   }
+  // Whether the volume's parts are counted apart, each by its own split plane: the volume is
+  // built with the part of each primitive (VolumeOptions::parts).
+  bool splits_by_part(std::size_t l, std::size_t o) const { return split[l][o].size() > 1; }
   // A transparent caster is not in the depth buffer, so the surfaces seen through it lie behind
   // its light caps: its light caps count under every rule (Kim et al. §1.2, Fig. 5).
   bool counts_light_caps_everywhere(std::size_t o) const { return glass_group[o] >= 0; }

@@ -36,7 +36,9 @@ bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_p
 void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
                                const glm::vec4& light, const glm::mat4& view_proj,
                                std::vector<glm::vec4>& triangles,
-                               std::vector<std::int32_t>& weights) {
+                               std::vector<std::int32_t>& weights,
+                               std::vector<std::uint32_t>* parts) {
+  assert(parts == nullptr || light_caps.parts.size() == light_caps.size());
   const glm::dmat4 to_clip(view_proj);
   const glm::dvec4 near = near_plane(view_proj);
   const glm::dvec4 l = affine(light);
@@ -72,6 +74,7 @@ void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4&
     for (int i = 1; i + 1 < n; ++i) {
       triangles.insert(triangles.end(), {projected[0], projected[i], projected[i + 1]});
       weights.push_back(weight);
+      if (parts != nullptr) parts->push_back(light_caps.parts[c]);
     }
   }
 }

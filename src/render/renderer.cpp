@@ -45,6 +45,14 @@ Expected<SplitPlanes> parse_split_planes(std::string_view name) {
   return parse_name(name, {SplitPlanes::laine, SplitPlanes::sampled}, "split-plane construction");
 }
 
+std::string_view to_string(SplitParts parts) {
+  return parts == SplitParts::each ? "each" : "whole";
+}
+
+Expected<SplitParts> parse_split_parts(std::string_view name) {
+  return parse_name(name, {SplitParts::each, SplitParts::whole}, "split-plane decomposition");
+}
+
 Expected<void> check_options(const RenderOptions& options) {
   if (options.width < 1 || options.height < 1 || options.width > soft::kMaxViewport ||
       options.height > soft::kMaxViewport)

@@ -61,6 +61,17 @@ enum class SplitPlanes : std::uint8_t { laine, sampled };
 std::string_view to_string(SplitPlanes planes);
 Expected<SplitPlanes> parse_split_planes(std::string_view name);
 
+// Whether Method::split_plane gives each part of a caster (Topology's parts: faces joined through
+// shared vertices) a split plane of its own, as Laine 2005 §6 decomposes casters into
+// sub-objects, found here automatically: `each` (an object of 2 to kMaxSplitParts parts; one
+// plane for an object of more, whose parts would each cost a draw and a sampling), or one plane
+// for the `whole` object. Parts cast their volumes apart from one another, so the side quads
+// drawn are the same either way; the depth bounds stay the object's.
+enum class SplitParts : std::uint8_t { each, whole };
+inline constexpr std::size_t kMaxSplitParts = 64;
+std::string_view to_string(SplitParts parts);
+Expected<SplitParts> parse_split_parts(std::string_view name);
+
 struct RenderOptions {
   int width = 960;
   int height = 540;
@@ -68,6 +79,7 @@ struct RenderOptions {
   Generator generator = Generator::automatic;
   Extrusion extrusion = Extrusion::infinite;
   SplitPlanes split_planes = SplitPlanes::sampled;
+  SplitParts split_parts = SplitParts::each;
   // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
   // one colour per light, so that a person can see the volumes.
   bool show_volumes = false;

@@ -57,57 +57,95 @@ struct SoftRenderer::Pass {
   std::vector<soft::TileWork>* total_work;
 };
 
+void SoftRenderer::Grouped::regroup(std::span<const glm::vec4> triangles,
+                                    std::span<const std::int32_t> triangle_weights,
+                                    std::span<const std::uint32_t> keys, std::size_t key_count) {
+  offsets.assign(key_count + 1, 0);
+  for (const std::uint32_t k : keys) ++offsets[k + 1];
+  for (std::size_t k = 0; k < key_count; ++k) offsets[k + 1] += offsets[k];
+  tris.resize(triangles.size());
+  weights.resize(triangle_weights.size());
+  cursor.assign(offsets.begin(), offsets.end() - 1);
+  for (std::size_t t = 0; t < keys.size(); ++t) {
+    const std::size_t at = cursor[keys[t]]++;
+    std::copy_n(&triangles[3 * t], 3, &tris[3 * at]);
+    weights[at] = triangle_weights[t];
+  }
+}
+
 void SoftRenderer::count_volume(const Pass& pass, std::size_t l, std::size_t o) {
   const FramePlan& plan = pass.plan;
   FrameStats& stats = pass.frame.stats;
   const VolumeBuffer& v = volumes_.volume(l, o);
-  std::optional<glm::vec4> split = plan.split[l][o];
+  const std::vector<FramePlan::PartSplit>& splits = plan.split[l][o];
+  const bool by_part = plan.splits_by_part(l, o);
   stats.volume_primitives += v.primitive_count();
   const glm::mat4 mvp = plan.view_proj * plan.model[o];
   const int sign = plan.weight_sign[o];
   tris_.clear();
   weights_.clear();
+  keys_.clear();
+  // Under a split plane, each triangle's key: 2 * its part (0 for a volume split whole), plus 1
+  // for a cap, which counts only where z-fail does (Laine 2005 §3.3).
+  auto add = [&](const PrimitiveList& list, int corners, std::uint32_t cap) {
+    clip_volume(list, corners, mvp, sign, tris_, weights_);
+    if (splits.empty()) return;
+    const int per = corners == kQuadCorners ? 2 : 1;
+    for (std::size_t p = 0; p < list.size(); ++p)
+      keys_.insert(keys_.end(), per, 2 * (by_part ? list.parts[p] : 0) + cap);
+  };
   // First what counts in every tile: the sides, and a transparent caster's light caps; then the
   // caps that count only where z-fail does.
-  clip_volume(v.sides, kQuadCorners, mvp, sign, tris_, weights_);
+  add(v.sides, kQuadCorners, 0);
   const bool glass = plan.counts_light_caps_everywhere(o);
-  if (glass) clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris_, weights_);
-  const std::size_t everywhere = weights_.size();
+  if (glass) add(v.light_caps, kTriangleCorners, 0);
   if (plan.counts_caps(l, o)) {
-    if (!glass) clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris_, weights_);
-    clip_volume(v.dark_caps, kTriangleCorners, mvp, sign, tris_, weights_);
+    if (!glass) add(v.light_caps, kTriangleCorners, 1);
+    add(v.dark_caps, kTriangleCorners, 1);
   }
   // Depth bounds, Laine 2005 §7's (FramePlan::depth_bounds). Pre-filled z-pass starts inside the
   // volume: a pixel beyond all of it must still count its way out, so no far bound.
   soft::DepthBounds bounds = plan.depth_bounds[l][o];
-  if (plan.prefill[l][o]) bounds.zmin = 0.0f;
-  const std::span<const glm::vec4> all_tris(tris_);
-  const std::span<const std::int32_t> all_weights(weights_);
-  if (const std::vector<glm::vec4>& candidates = plan.split_candidates[l][o]; !candidates.empty())
-    split = candidates[split_sampler_.cheapest(target_, all_tris.first(3 * everywhere),
-                                               all_tris.subspan(3 * everywhere), bounds, candidates,
-                                               stats.split_sampling)];
   if (plan.prefill[l][o]) {  // ZP+: where z-pass counts, start from the near plane's count
+    bounds.zmin = 0.0f;
     prefill_tris_.clear();
     prefill_weights_.clear();
+    prefill_keys_.clear();
     append_near_plane_prefill(v.light_caps, plan.model[o], sign, plan.lights[l], plan.view_proj,
-                              prefill_tris_, prefill_weights_);
-    soft::draw_counts(target_, prefill_tris_, prefill_weights_, soft::CountRule::prefill,
-                      stats.counts, {},
-                      {split.value_or(glm::vec4(0.0f)),
-                       split ? soft::SplitTiles::zpass_only : soft::SplitTiles::all});
+                              prefill_tris_, prefill_weights_, by_part ? &prefill_keys_ : nullptr);
   }
-  if (split) {
-    // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
-    soft::draw_counts(target_, all_tris.first(3 * everywhere), all_weights.first(everywhere),
-                      soft::CountRule::split, stats.counts, bounds, {*split});
-    soft::draw_counts(target_, all_tris.subspan(3 * everywhere), all_weights.subspan(everywhere),
-                      soft::CountRule::split, stats.counts, bounds,
-                      {*split, soft::SplitTiles::zfail_only});
-  } else {
-    soft::draw_counts(target_, all_tris, all_weights,
+  if (splits.empty()) {
+    if (plan.prefill[l][o])
+      soft::draw_counts(target_, prefill_tris_, prefill_weights_, soft::CountRule::prefill,
+                        stats.counts);
+    soft::draw_counts(target_, tris_, weights_,
                       plan.zfail[l][o] ? soft::CountRule::zfail : soft::CountRule::zpass,
                       stats.counts, bounds);
+  } else {
+    volume_groups_.regroup(tris_, weights_, keys_, 2 * splits.size());
+    if (plan.prefill[l][o]) {
+      if (!by_part) prefill_keys_.assign(prefill_weights_.size(), 0);
+      prefill_groups_.regroup(prefill_tris_, prefill_weights_, prefill_keys_, splits.size());
+    }
+    for (std::size_t p = 0; p < splits.size(); ++p) {
+      const auto everywhere = volume_groups_.triangles_of(2 * p, 2 * p + 1);
+      const auto caps = volume_groups_.triangles_of(2 * p + 1, 2 * p + 2);
+      if (everywhere.empty() && caps.empty()) continue;  // a part that casts nothing
+      glm::vec4 plane = splits[p].plane;
+      if (const std::vector<glm::vec4>& candidates = splits[p].candidates; !candidates.empty())
+        plane = candidates[split_sampler_.cheapest(target_, everywhere, caps, bounds, candidates,
+                                                   stats.split_sampling)];
+      if (plan.prefill[l][o])
+        soft::draw_counts(target_, prefill_groups_.triangles_of(p, p + 1),
+                          prefill_groups_.weights_of(p, p + 1), soft::CountRule::prefill,
+                          stats.counts, {}, {plane, soft::SplitTiles::zpass_only});
+      // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
+      soft::draw_counts(target_, everywhere, volume_groups_.weights_of(2 * p, 2 * p + 1),
+                        soft::CountRule::split, stats.counts, bounds, {plane});
+      soft::draw_counts(target_, caps, volume_groups_.weights_of(2 * p + 1, 2 * p + 2),
+                        soft::CountRule::split, stats.counts, bounds,
+                        {plane, soft::SplitTiles::zfail_only});
+    }
   }
   if (pass.total_work != nullptr) {  // bookkeeping, left out of the count passes' time
     const auto bookkeeping = Clock::now();

@@ -14,6 +14,11 @@
 // plus the nearest one's own reflection.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
 #include "render/frame_plan.h"
 #include "render/renderer.h"
 #include "soft/raster.h"
@@ -39,11 +44,33 @@ class SoftRenderer final : public Renderer {
   // whichever way it faces; against the opaque layer's depths), into eye_log_.
   void filter_through_glass(const Pass& pass);
 
+  // Triangles (3 clip-space vertices each) and their weights, regrouped stably by a key per
+  // triangle: those of keys [first, last) are together, in order.
+  struct Grouped {
+    std::vector<glm::vec4> tris;
+    std::vector<std::int32_t> weights;
+    std::vector<std::size_t> offsets;  // key k's are [offsets[k], offsets[k + 1])
+    std::vector<std::size_t> cursor;   // where the next of key k goes, while regrouping
+
+    void regroup(std::span<const glm::vec4> triangles, std::span<const std::int32_t> weights,
+                 std::span<const std::uint32_t> keys, std::size_t key_count);
+    std::span<const glm::vec4> triangles_of(std::size_t first, std::size_t last) const {
+      return std::span(tris).subspan(3 * offsets[first], 3 * (offsets[last] - offsets[first]));
+    }
+    std::span<const std::int32_t> weights_of(std::size_t first, std::size_t last) const {
+      return std::span(weights).subspan(offsets[first], offsets[last] - offsets[first]);
+    }
+  };
+
   VolumeCache volumes_;
   soft::Target target_;
   soft::SplitPlaneSampler split_sampler_;
-  std::vector<glm::vec4> tris_, prefill_tris_;  // kept between frames: no reallocation
+  // Kept between frames: no reallocation. Under a split plane, a key per triangle (its part and
+  // whether only z-fail counts it) and the triangles grouped by it.
+  std::vector<glm::vec4> tris_, prefill_tris_;
   std::vector<std::int32_t> weights_, prefill_weights_;
+  std::vector<std::uint32_t> keys_, prefill_keys_;
+  Grouped volume_groups_, prefill_groups_;
   std::vector<glm::vec3> log_light_, eye_log_;
   std::vector<float> opaque_depth_;  // with transparent casters: the opaque layer's depths
 };

@@ -65,12 +65,14 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
     std::size_t quads = 0, light_caps = 0, dark_caps = 0;
     for (std::size_t q : scratch.quads) quads += q;
     for (const CapCount& c : scratch.caps) light_caps += c.light, dark_caps += c.dark;
-    const PrimitiveSpan sides_at = out.sides.grow(quads, kQuadCorners);
-    const PrimitiveSpan light_at = out.light_caps.grow(light_caps, kTriangleCorners);
-    const PrimitiveSpan dark_at = out.dark_caps.grow(dark_caps, kTriangleCorners);
+    const bool parts = job.options.parts;
+    const PrimitiveSpan sides_at = out.sides.grow(quads, kQuadCorners, parts);
+    const PrimitiveSpan light_at = out.light_caps.grow(light_caps, kTriangleCorners, parts);
+    const PrimitiveSpan dark_at = out.dark_caps.grow(dark_caps, kTriangleCorners, parts);
     auto advance = [](PrimitiveSpan at, std::size_t primitives, int corners) {
       return PrimitiveSpan{at.vertices + primitives * static_cast<std::size_t>(corners),
-                           at.weights + primitives};
+                           at.weights + primitives,
+                           at.parts != nullptr ? at.parts + primitives : nullptr};
     };
     tbb::parallel_for(std::size_t{0}, edge_chunks + cap_chunks, [&](std::size_t c) {
       if (c < edge_chunks) {

@@ -48,18 +48,23 @@ std::size_t SplitPlaneSampler::cheapest(const Target& target, std::span<const gl
   count_layers(mapped.first(always.size()), CountRule::cover, 2.0f, zpass_layers_, counters);
   count_layers(mapped, CountRule::behind, -1.0f, zfail_layers_, counters);
 
+  // A plane costs the z-fail layers of every sample plus, where it picks z-pass, the difference:
+  // only the samples where the two rules differ tell the planes apart (a small part's volume
+  // leaves most at 0 and 0).
+  telling_.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (tile_[i] >= 0 && zpass_layers_[i] != zfail_layers_[i]) telling_.push_back(i);
   std::size_t best = 0;
-  double best_cost = INFINITY;
+  std::int64_t best_cost = 0;
   for (std::size_t p = 0; p < planes.size(); ++p) {
-    double cost = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (tile_[i] < 0) continue;
+    std::int64_t cost = 0;  // over z-fail everywhere
+    for (const std::size_t i : telling_) {
       const int tx = static_cast<int>(tile_[i] % target.tiles_x);
       const int ty = static_cast<int>(tile_[i] / target.tiles_x);
-      cost += split_rule(target, tx, ty, planes[p]) == CountRule::zpass ? zpass_layers_[i]
-                                                                        : zfail_layers_[i];
+      if (split_rule(target, tx, ty, planes[p]) == CountRule::zpass)
+        cost += zpass_layers_[i] - zfail_layers_[i];
     }
-    if (cost < best_cost) best_cost = cost, best = p;
+    if (p == 0 || cost < best_cost) best_cost = cost, best = p;
   }
   return best;
 }

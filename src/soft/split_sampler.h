@@ -53,6 +53,7 @@ class SplitPlaneSampler {
   std::vector<glm::vec4> triangles_;  // always then zfail_only, mapped onto samples_
   std::vector<std::int32_t> ones_;    // their weights
   std::vector<std::int32_t> zpass_layers_, zfail_layers_;  // per sample
+  std::vector<std::size_t> telling_;                       // the samples whose two counts differ
 };
 
 }  // namespace shadowvol::soft

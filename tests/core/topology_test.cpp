@@ -142,6 +142,23 @@ TEST(Topology, ComponentsCountSeparateShells) {
   EXPECT_TRUE(t.report.closed_manifold);
 }
 
+// Parts are the faces joined through shared vertices, numbered in order of their first face;
+// two shells touching at one vertex are one part, and a vertex no face uses has none.
+TEST(Topology, PartsAreNumberedInFaceOrder) {
+  Mesh m;
+  add_triangle(m, {5, 0, 0}, {6, 0, 0}, {5, 1, 0});  // part 0
+  add_triangle(m, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});  // part 1
+  add_triangle(m, {6, 0, 0}, {7, 0, 0}, {6, 1, 0});  // touches the first at (6, 0, 0): part 0
+  m.positions.emplace_back(9, 9, 9);                 // used by no face
+  const Topology t = build_topology(m);
+  ASSERT_EQ(t.part_count(), 2u);
+  ASSERT_EQ(t.vertex_part.size(), t.positions.size());
+  for (std::size_t f = 0; f < t.face_count(); ++f)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(t.vertex_part[t.face_vertices[3 * f + k]], f == 1 ? 1u : 0u) << f;
+  EXPECT_EQ(t.vertex_part[t.vertex_remap[9]], Topology::kNoPart);
+}
+
 TEST(Topology, FrameBytesCountsTheFlatArraysOfTheSidePass) {
   const Topology cube = build_topology(testing::box({0, 0, 0}, {1, 1, 1}));
   // 12 planes of 16 B, 18 regular edges of two 4-byte faces, one irregular offset.

@@ -133,6 +133,62 @@ TEST(Volume, BufferIsReusedWithoutReallocating) {
   EXPECT_EQ(out.dark_caps.weights, first.dark_caps.weights);
 }
 
+// A primitive as sortable values: its part, weight and vertices.
+using Primitive = std::vector<float>;
+std::vector<Primitive> primitives_of(const PrimitiveList& list, int corners,
+                                     std::uint32_t only_part, bool has_parts) {
+  std::vector<Primitive> out;
+  for (std::size_t p = 0; p < list.size(); ++p) {
+    if (has_parts && list.parts[p] != only_part) continue;
+    Primitive v{static_cast<float>(list.weights[p])};
+    for (int k = 0; k < corners; ++k)
+      for (int c = 0; c < 4; ++c) v.push_back(list.vertices[p * corners + k][c]);
+    out.push_back(v);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// VolumeOptions::parts: the primitives a mesh's volume tags with part p are exactly the volume
+// that part alone casts (in another order), on every test mesh, for every generator that takes
+// it, and with or without caps; without the option, nothing is recorded.
+TEST(Volume, EachPartsPrimitivesAreThatPartsOwnVolume) {
+  // Above every mesh; the far plane y = -100 below all of them (core/volume.h's precondition).
+  const glm::vec4 light(7.0f, 400.0f, 23.0f, 1.0f), far(0.0f, -1.0f, 0.0f, -100.0f);
+  for (const testing::NamedMesh& named : testing::adversarial_meshes(11)) {
+    const Topology topo = build_topology(named.mesh);
+    for (const Generator g : {Generator::automatic, Generator::robust, Generator::multiplicity}) {
+      const Generator resolved = resolve_generator(g, topo.report);
+      VolumeBuffer whole, plain, own;
+      VolumeScratch scratch;
+      build_volume(topo, light, {resolved, true, kPlaneAtInfinity, true}, scratch, whole);
+      build_volume(topo, light, {resolved, true, kPlaneAtInfinity, false}, scratch, plain);
+      EXPECT_TRUE(plain.sides.parts.empty() && plain.light_caps.parts.empty());
+      ASSERT_EQ(whole.sides.parts.size(), whole.sides.size());
+      for (std::uint32_t part = 0; part < topo.part_count(); ++part) {
+        SCOPED_TRACE(named.name + ", part " + std::to_string(part) + ", " +
+                     std::string(to_string(g)));
+        Mesh alone;  // the part's faces, over the welded positions
+        alone.positions = topo.positions;
+        for (std::size_t f = 0; f < topo.face_count(); ++f)
+          if (topo.vertex_part[topo.face_vertices[3 * f]] == part)
+            alone.indices.insert(alone.indices.end(), &topo.face_vertices[3 * f],
+                                 &topo.face_vertices[3 * f + 3]);
+        for (const glm::vec4 far_plane : {kPlaneAtInfinity, far}) {
+          build_volume(topo, light, {resolved, true, far_plane, true}, scratch, whole);
+          build_volume(build_topology(alone), light, {resolved, true, far_plane}, scratch, own);
+          EXPECT_EQ(primitives_of(whole.sides, kQuadCorners, part, true),
+                    primitives_of(own.sides, kQuadCorners, 0, false));
+          EXPECT_EQ(primitives_of(whole.light_caps, kTriangleCorners, part, true),
+                    primitives_of(own.light_caps, kTriangleCorners, 0, false));
+          EXPECT_EQ(primitives_of(whole.dark_caps, kTriangleCorners, part, true),
+                    primitives_of(own.dark_caps, kTriangleCorners, 0, false));
+        }
+      }
+    }
+  }
+}
+
 TEST(Lights, CheckRefusesWhatIsNotALight) {
   EXPECT_TRUE(check_light({1, 2, 3, 1}).ok());
   EXPECT_TRUE(check_light({0, 0, 1, 0}).ok());

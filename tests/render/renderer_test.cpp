@@ -54,16 +54,51 @@ TEST(Renderer, SampledSplitPlanesCountTheirSamplesApart) {
   FrameStats stats;
   const FramePlan plan = plan_frame(*scene, options, stats);
   for (std::size_t o = 0; o < scene->objects.size(); ++o) {
-    ASSERT_TRUE(plan.split[0][o].has_value());
-    EXPECT_GE(plan.split_candidates[0][o].size(), 2u);  // at least both whole-volume rules
+    ASSERT_FALSE(plan.split[0][o].empty());
+    for (const FramePlan::PartSplit& part : plan.split[0][o])
+      EXPECT_GE(part.candidates.size(), 2u);  // at least both whole-volume rules
   }
   options.split_planes = SplitPlanes::laine;
   EXPECT_EQ(renderer.render(*scene, options).stats.split_sampling.triangles_in, 0u);
-  EXPECT_TRUE(plan_frame(*scene, options, stats).split_candidates[0][0].empty());
+  EXPECT_TRUE(plan_frame(*scene, options, stats).split[0][0][0].candidates.empty());
   options.split_planes = SplitPlanes::sampled;
   for (SceneObject& object : scene->objects)
     object.split_plane = SplitPlaneChoice::point_camera_light;
   EXPECT_EQ(renderer.render(*scene, options).stats.split_sampling.triangles_in, 0u);
+}
+
+// SplitParts::each gives every part of a caster its own split plane (the knight is twelve closed
+// shells: legs, torso, head, sword...), the ground one; SplitParts::whole one per object; an
+// object of more than kMaxSplitParts parts keeps one. The volume is built with its parts then.
+TEST(Renderer, EachPartOfACasterGetsItsOwnSplitPlane) {
+  auto scene = builtin_scene("knight");
+  ASSERT_TRUE(scene.ok());
+  ASSERT_EQ(scene->objects[1].name, "knight");
+  ASSERT_EQ(scene->objects[1].topology->part_count(), 12u);
+  RenderOptions options{256, 192, Method::split_plane, Generator::automatic};
+  FrameStats stats;
+  const FramePlan each = plan_frame(*scene, options, stats);
+  EXPECT_EQ(each.split[0][0].size(), 1u);  // the ground
+  EXPECT_EQ(each.split[0][1].size(), 12u);
+  EXPECT_TRUE(each.splits_by_part(0, 1));
+  options.split_parts = SplitParts::whole;
+  const FramePlan whole = plan_frame(*scene, options, stats);
+  EXPECT_EQ(whole.split[0][1].size(), 1u);
+  EXPECT_FALSE(whole.splits_by_part(0, 1));
+
+  Mesh many;  // kMaxSplitParts + 1 separate triangles
+  for (std::size_t i = 0; i <= kMaxSplitParts; ++i) {
+    const auto first = static_cast<std::uint32_t>(many.positions.size());
+    const float x = static_cast<float>(i);
+    many.positions.insert(many.positions.end(), {{x, 0, 0}, {x + 0.5f, 0, 0}, {x, 0.5f, 0}});
+    many.indices.insert(many.indices.end(), {first, first + 1, first + 2});
+  }
+  scene->objects[1] = make_object("many", many, glm::mat4(1.0f), glm::vec3(0.8f));
+  options.split_parts = SplitParts::each;
+  EXPECT_EQ(plan_frame(*scene, options, stats).split[0][1].size(), 1u);
+  EXPECT_EQ(parse_split_parts("whole").value(), SplitParts::whole);
+  EXPECT_EQ(parse_split_parts("all").error().message,
+            "unknown split-plane decomposition 'all': expected each or whole");
 }
 
 // Per-tile work adds up to the frame's counters, and the heatmap shows it where it happened.
@@ -124,14 +159,14 @@ TEST(Renderer, SplitPlanesRunAlongLongThinObjects) {
   // back in eye-relative space: planes map by the transpose).
   const auto side = [](const FramePlan& plan, const glm::vec4& p) {
     const glm::dvec4 plane =
-        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
+        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.split[0][0][0].plane);
     const glm::dvec4 x = glm::dmat4(plan.model[0]) * glm::dvec4(p);
     return std::abs(glm::dot(plane, x)) / glm::length(glm::dvec3(plane));
   };
   FrameStats stats;
   const glm::vec4 end1(0, -1.5f, 0, 1), end2(0, 1.5f, 0, 1), centre(0, 0, 0, 1);
   const FramePlan ppl = plan_frame(scene, options, stats);
-  ASSERT_TRUE(ppl.split[0][0].has_value());
+  ASSERT_EQ(ppl.split[0][0].size(), 1u);
   EXPECT_LT(side(ppl, end1), 1e-4);
   EXPECT_LT(side(ppl, end2), 1e-4);
   scene.objects[0].split_plane = SplitPlaneChoice::point_camera_light;
@@ -158,11 +193,12 @@ TEST(Renderer, PointCameraLightRunsThroughTheObjectsCentroid) {
   scene.lights.push_back({{1.0f, 6.0f, -3.0f, 1.0f}, glm::vec3(1.0f), 1.0f});
   scene.camera = {{0.0f, 2.0f, 6.0f}, {0.0f, 1.0f, 0.0f}};
   FrameStats stats;
-  const FramePlan plan =
-      plan_frame(scene, {320, 200, Method::split_plane, Generator::automatic}, stats);
-  ASSERT_TRUE(plan.split[0][0].has_value());
+  RenderOptions options{320, 200, Method::split_plane, Generator::automatic};
+  options.split_parts = SplitParts::whole;  // box and ball are two parts: one plane for both
+  const FramePlan plan = plan_frame(scene, options, stats);
+  ASSERT_EQ(plan.split[0][0].size(), 1u);
   const glm::dvec4 plane =
-      glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
+      glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.split[0][0][0].plane);
   const auto distance = [&](const glm::dvec3& object_point) {  // world units
     const glm::dvec4 x = glm::dmat4(plan.model[0]) * glm::dvec4(object_point, 1.0);
     return std::abs(glm::dot(plane, x)) / glm::length(glm::dvec3(plane));
@@ -188,11 +224,12 @@ TEST(Renderer, FlatCastersGetTheirOwnPlaneAndRodsStayPointPointLight) {
   const RenderOptions options{320, 200, Method::split_plane, Generator::automatic};
   FrameStats stats;
   const auto world_plane = [](const FramePlan& plan) {  // eye-relative, unit normal
-    glm::dvec4 plane = glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(*plan.split[0][0]);
+    glm::dvec4 plane =
+        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.split[0][0][0].plane);
     return plane / glm::length(glm::dvec3(plane));
   };
   const FramePlan flat = plan_frame(scene, options, stats);
-  ASSERT_TRUE(flat.split[0][0].has_value());
+  ASSERT_EQ(flat.split[0][0].size(), 1u);
   const glm::dvec4 plane = world_plane(flat);
   EXPECT_NEAR(std::abs(plane.y), 1.0, 1e-6);  // the floor's own orientation
   const auto at = [&](const glm::vec3& world) {
@@ -209,7 +246,7 @@ TEST(Renderer, FlatCastersGetTheirOwnPlaneAndRodsStayPointPointLight) {
   scene.objects[0] = make_object("rod", make_box({-5.0f, -0.005f, -0.005f}, {5.0f, 0.005f, 0.005f}),
                                  lift, glm::vec3(0.8f));
   const FramePlan rod = plan_frame(scene, options, stats);
-  ASSERT_TRUE(rod.split[0][0].has_value());
+  ASSERT_EQ(rod.split[0][0].size(), 1u);
   const glm::dvec4 rod_plane = world_plane(rod);
   const auto rod_at = [&](const glm::vec3& world) {
     return glm::dot(rod_plane,

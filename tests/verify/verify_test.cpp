@@ -34,9 +34,12 @@ struct Variant {
   Backend backend;
   gl::GlSettings gl;
   SplitPlanes split_planes = SplitPlanes::sampled;  // for Method::split_plane
+  SplitParts split_parts = SplitParts::each;        // likewise
 };
 const Variant kSoft{"soft", Backend::soft, {}};
 const Variant kSoftLaine{"soft_laine_planes", Backend::soft, {}, SplitPlanes::laine};
+const Variant kSoftWhole{
+    "soft_plane_per_object", Backend::soft, {}, SplitPlanes::sampled, SplitParts::whole};
 const Variant kGlCpu{"gl_cpu", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::automatic}};
 const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarget::automatic}};
 const Variant kGlAdditive{
@@ -59,6 +62,7 @@ Comparison verify(const Scene& scene, Method method, Generator generator = Gener
                   const Variant& variant = kSoft, Extrusion extrusion = Extrusion::infinite) {
   RenderOptions options{kWidth, kHeight, method, generator, extrusion};
   options.split_planes = variant.split_planes;
+  options.split_parts = variant.split_parts;
   const Frame frame = render(variant, scene, options);
   if (frame.object.empty()) return {};
   auto reference = trace_reference(scene, kWidth, kHeight);
@@ -107,12 +111,13 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::ValuesIn(kVariants), ::testing::Values(Extrusion::infinite)),
     scene_method_name);
 
-// Split-plane shadow volumes (Laine 2005; planes sampled, and Laine's own) and z-pass with the
-// ZP+ pre-fill run in the software backend only.
+// Split-plane shadow volumes (Laine 2005; planes sampled, and Laine's own, each part of a caster
+// with its own; sampled, one per object) and z-pass with the ZP+ pre-fill run in the software
+// backend only.
 INSTANTIATE_TEST_SUITE_P(
     SoftOnly, BuiltinScenes,
     ::testing::Combine(::testing::ValuesIn(kSceneNames), ::testing::Values(Method::split_plane),
-                       ::testing::Values(kSoft, kSoftLaine),
+                       ::testing::Values(kSoft, kSoftLaine, kSoftWhole),
                        ::testing::Values(Extrusion::infinite, Extrusion::bounded)),
     scene_method_name);
 INSTANTIATE_TEST_SUITE_P(
@@ -137,7 +142,8 @@ INSTANTIATE_TEST_SUITE_P(Bounded, BuiltinScenes,
 // must match the reference. Each way the pre-fill's projection can turn: point and directional
 // lights on the eye's side of the near plane (the built-in scene's light is up and behind the
 // camera), a mirrored caster, a caster hidden behind the camera, and a light ahead of the eye,
-// beyond the near plane, with its caster in view.
+// beyond the near plane, with its caster in view; and a caster of two parts, the eye in the
+// shadow of one, where each part counts by its own split plane from its own pre-fill.
 TEST(NearPlanePrefill, MakesZPassExactWithTheEyeInShadow) {
   const Scene base = *builtin_scene("camera-in-shadow");
   struct Case {
@@ -148,7 +154,8 @@ TEST(NearPlanePrefill, MakesZPassExactWithTheEyeInShadow) {
                              {"directional", base},
                              {"mirrored", base},
                              {"caster behind the eye", base},
-                             {"light ahead of the eye", base}};
+                             {"light ahead of the eye", base},
+                             {"two parts", base}};
   cases[1].scene.lights[0].position = {0.07f, 1.0f, 0.43f, 0.0f};
   std::size_t slab = 1;
   ASSERT_EQ(base.objects[slab].name, "slab");
@@ -164,12 +171,21 @@ TEST(NearPlanePrefill, MakesZPassExactWithTheEyeInShadow) {
                                     glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 4.0f, -1.25f)),
                                     {0.5f, 0.5f, 0.5f});
   ahead.lights[0].position = {0.0f, 6.0f, -6.0f, 1.0f};
+  Mesh two_parts = *base.objects[slab].mesh;  // the slab, and a box below and beside it
+  const Mesh beside = make_box({-6.0f, -2.0f, -4.0f}, {-4.5f, -1.0f, -2.5f});
+  const auto first = static_cast<std::uint32_t>(two_parts.positions.size());
+  two_parts.positions.insert(two_parts.positions.end(), beside.positions.begin(),
+                             beside.positions.end());
+  for (const std::uint32_t i : beside.indices) two_parts.indices.push_back(first + i);
+  cases[5].scene.objects[slab] = make_object("slab", two_parts, base.objects[slab].transform,
+                                             base.objects[slab].material.color);
+  ASSERT_EQ(cases[5].scene.objects[slab].topology->part_count(), 2u);
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     EXPECT_GT(verify(c.scene, Method::zpass).mismatched_outside_band, 100u);
     for (Extrusion e : {Extrusion::infinite, Extrusion::bounded})
       for (Method m : {Method::zpass_prefill, Method::split_plane})
-        for (const Variant& v : {kSoft, kSoftLaine}) {
+        for (const Variant& v : {kSoft, kSoftLaine, kSoftWhole}) {
           const Comparison result = verify(c.scene, m, Generator::automatic, v, e);
           EXPECT_GT(result.pixels_compared, std::size_t{kWidth * kHeight / 4});
           EXPECT_EQ(result.mismatched_outside_band, 0u)
