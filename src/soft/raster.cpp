@@ -246,9 +246,12 @@ struct LaneCount {
 };
 
 // What a tile test decides from the tile's depth bounds: no pixel can pass the pass's depth
-// tests, every covered pixel passes them (their stored depths need not be read), or each pixel
-// must be tested; and, for a count pass, by which rule (zpass or zfail).
-enum class TileVerdict { skip, test, accept };
+// tests; every covered pixel passes them (their stored depths need not be read); each pixel's
+// depth must be tested, its stored depth lying within the pass's depth bounds (test_depth); or
+// both must be tested; and, for a count pass, by which rule (zpass or zfail).
+enum class TileVerdict { skip, test, test_depth, accept };
+template <TileVerdict verdict>
+using Checks = std::integral_constant<TileVerdict, verdict>;
 struct TileDecision {
   TileVerdict verdict;
   CountRule rule;
@@ -260,11 +263,11 @@ struct TileDepthPlane {
 };
 
 // Rasterizes one triangle over tile row `band`. For every row of every tile that it may cover,
-// calls row(first, covered, z, lanes, decided, rule): pixels first .. first + lanes - 1 of the
+// calls row(first, covered, z, lanes, checks, rule): pixels first .. first + lanes - 1 of the
 // buffers, the mask of those whose centres it covers (-1 or 0; no lane past the image's right
-// edge is set), its depth there, std::true_type when the tile test accepted the tile (every
-// covered pixel passes) or std::false_type when each must be tested, and the tile's rule; row
-// returns the mask of those that passed, for the counters.
+// edge is set), its depth there, the tile's verdict as Checks<> (accept, test_depth or test: what
+// each pixel still needs), and the tile's rule; row returns the mask of those that passed, for
+// the counters.
 //
 // Per tile, first the edge test: edge functions are linear, so the tile's corner pixel centres
 // tell whether any pixel centre of the tile can be inside, and whether all are (then no edge is
@@ -326,14 +329,16 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters, 
       ++counters.tiles_skipped;
       continue;
     }
-    const Mask e0 = q[0] + step_i[0] * kLaneIndex, e1 = q[1] + step_i[1] * kLaneIndex,
-               e2 = q[2] + step_i[2] * kLaneIndex;
-    const auto rows_of_tile = [&](auto lanes, auto decided, auto inside) {
+    const auto rows_of_tile = [&](auto lanes, auto checks, auto inside) {
       const Mask in_image = kLaneIndex < static_cast<int>(lanes);
-      for (int j = 0; j < rows; ++j) {
+      // The edge functions of row j, stepped from row to row (exact: integers).
+      Mask e0 = q[0] + step_i[0] * kLaneIndex, e1 = q[1] + step_i[1] * kLaneIndex,
+           e2 = q[2] + step_i[2] * kLaneIndex;
+      const Mask down0 = Mask{} + step_j[0], down1 = Mask{} + step_j[1], down2 = Mask{} + step_j[2];
+      for (int j = 0; j < rows; ++j, e0 += down0, e1 += down1, e2 += down2) {
         Mask covered = in_image;
         if constexpr (!inside) {
-          covered &= ((e0 + step_j[0] * j) | (e1 + step_j[1] * j) | (e2 + step_j[2] * j)) >= 0;
+          covered &= (e0 | e1 | e2) >= 0;
           if (!any(covered)) continue;
         }
         const Floats z = (plane.z_tile + dzdy * j) + dz_lane;
@@ -342,18 +347,23 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters, 
                              z < 0.0f   ? 0.0f
                              : z > 1.0f ? 1.0f
                                         : z,
-                             lanes, decided, rule));
+                             lanes, checks, rule));
       }
     };
     using No = std::false_type;
     using Yes = std::true_type;
     const Mask covered_before = covered_count.sum, passed_before = passed_count.sum;
+    const auto whole_rows = [&](auto checks) {
+      interior ? rows_of_tile(WholeRow{}, checks, Yes{}) : rows_of_tile(WholeRow{}, checks, No{});
+    };
     if (lanes < kTileSize)
-      rows_of_tile(lanes, No{}, No{});
+      rows_of_tile(lanes, Checks<TileVerdict::test>{}, No{});
     else if (verdict == TileVerdict::accept)
-      interior ? rows_of_tile(WholeRow{}, Yes{}, Yes{}) : rows_of_tile(WholeRow{}, Yes{}, No{});
+      whole_rows(Checks<TileVerdict::accept>{});
+    else if (verdict == TileVerdict::test_depth)
+      whole_rows(Checks<TileVerdict::test_depth>{});
     else
-      interior ? rows_of_tile(WholeRow{}, No{}, Yes{}) : rows_of_tile(WholeRow{}, No{}, No{});
+      whole_rows(Checks<TileVerdict::test>{});
     if (work != nullptr) {
       work[tx].pixels_processed +=
           static_cast<std::uint32_t>(LaneCount{covered_count.sum - covered_before}.total());
@@ -370,43 +380,29 @@ struct Prepared {
   Setup setup;
 };
 
-// Clips, projects and sets up every triangle of the batch, in order.
-void prepare(const Target& target, std::span<const glm::vec4> triangles, Counters& counters,
-             std::vector<Prepared>& out) {
-  assert(triangles.size() % 3 == 0);
-  out.clear();
-  for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
-    ++counters.triangles_in;
-    Polygon poly;
-    bool clipped = false;
-    if (!clip(&triangles[3 * t], poly, clipped)) {
-      ++counters.triangles_clipped;
-      ++counters.triangles_culled;
-      continue;
-    }
-    counters.triangles_clipped += clipped;
-    ScreenVertex screen[kMaxPolygon];
-    for (int i = 0; i < poly.n; ++i) screen[i] = to_screen(poly.v[i], target.width, target.height);
-    bool drawn = false;
-    for (int i = 1; i + 1 < poly.n; ++i) {  // a fan: the clipped polygon is convex
-      Prepared p{t, {}};
-      if (!setup(screen[0], screen[i], screen[i + 1], p.setup)) continue;
-      drawn = true;
-      out.push_back(p);
-    }
-    counters.triangles_culled += !drawn;
-  }
-}
-
 struct BandRange {
   int first, last;  // tile rows a set-up triangle's bounding box overlaps; last < first: none
+};
+
+// A draw's triangles are set up in chunks of this many, chunks in parallel: set-up is otherwise
+// the one serial stage of a draw (a twelfth of light-in-view's count pass, README).
+inline constexpr std::size_t kSetupChunk = 512;
+
+// What one chunk of a draw's triangles became, in order: the set-up triangles (a clipped one may
+// give several, a culled one none), the tile rows each overlaps, and the chunk's counters.
+struct SetupChunk {
+  std::vector<Prepared> prepared;
+  std::vector<BandRange> ranges;
+  Counters counters;
 };
 
 }  // namespace
 
 struct Target::Scratch {
-  std::vector<Prepared> prepared;
-  std::vector<BandRange> ranges;
+  // The chunks of the last draw: the first `chunks` entries (kept between draws, with their
+  // storage, so that a warm target allocates nothing).
+  std::vector<SetupChunk> setup;
+  std::size_t chunks = 0;
   std::vector<Counters> band_counters;
 };
 
@@ -479,29 +475,79 @@ Target::Scratch& scratch_of(Target& target) {
   return *target.scratch;
 }
 
-// Rasterizes the triangles set up in the scratch band by band (a band is a row of tiles), bands
-// in parallel: each band sees every triangle in order, so a pixel's result does not depend on
-// the threads. Each band scans a compact list of the triangles' band ranges, not their setups.
-template <class PerTriangle>
-void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangle) {
+// Clips, projects and sets up every triangle of a draw, chunks of kSetupChunk in parallel, into
+// the scratch's chunks, in order, with the tile rows each set-up triangle overlaps.
+void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters) {
+  assert(triangles.size() % 3 == 0);
   Target::Scratch& scratch = scratch_of(target);
+  const std::size_t n = triangles.size() / 3;
+  scratch.chunks = (n + kSetupChunk - 1) / kSetupChunk;
+  if (scratch.setup.size() < scratch.chunks) scratch.setup.resize(scratch.chunks);
   constexpr std::int64_t kBandHeight = std::int64_t{kTileSize} * kSubpixels;
   const auto band_of = [](std::int64_t y) {  // floor division: y may be negative
     return (y >= 0 ? y : y - kBandHeight + 1) / kBandHeight;
   };
-  scratch.ranges.resize(scratch.prepared.size());
-  for (std::size_t t = 0; t < scratch.prepared.size(); ++t) {
-    const Setup& s = scratch.prepared[t].setup;
-    const std::int64_t first = std::clamp<std::int64_t>(band_of(s.min_y), 0, target.tiles_y);
-    const std::int64_t last = std::clamp<std::int64_t>(band_of(s.max_y), -1, target.tiles_y - 1);
-    scratch.ranges[t] = {static_cast<int>(first), static_cast<int>(last)};
-  }
+  tbb::parallel_for(std::size_t{0}, scratch.chunks, [&](std::size_t c) {
+    SetupChunk& chunk = scratch.setup[c];
+    chunk.prepared.clear();
+    chunk.ranges.clear();
+    chunk.counters = {};
+    for (std::size_t t = c * kSetupChunk; t < std::min(n, (c + 1) * kSetupChunk); ++t) {
+      ++chunk.counters.triangles_in;
+      Polygon poly;
+      bool clipped = false;
+      if (!clip(&triangles[3 * t], poly, clipped)) {
+        ++chunk.counters.triangles_clipped;
+        ++chunk.counters.triangles_culled;
+        continue;
+      }
+      chunk.counters.triangles_clipped += clipped;
+      ScreenVertex screen[kMaxPolygon];
+      for (int i = 0; i < poly.n; ++i)
+        screen[i] = to_screen(poly.v[i], target.width, target.height);
+      bool drawn = false;
+      for (int i = 1; i + 1 < poly.n; ++i) {  // a fan: the clipped polygon is convex
+        Prepared p{t, {}};
+        if (!setup(screen[0], screen[i], screen[i + 1], p.setup)) continue;
+        drawn = true;
+        const std::int64_t first =
+            std::clamp<std::int64_t>(band_of(p.setup.min_y), 0, target.tiles_y);
+        const std::int64_t last =
+            std::clamp<std::int64_t>(band_of(p.setup.max_y), -1, target.tiles_y - 1);
+        chunk.prepared.push_back(p);
+        chunk.ranges.push_back({static_cast<int>(first), static_cast<int>(last)});
+      }
+      chunk.counters.triangles_culled += !drawn;
+    }
+  });
+  for (std::size_t c = 0; c < scratch.chunks; ++c) counters += scratch.setup[c].counters;
+}
+
+// Bands per task of for_each_band: the triangles' band ranges are scanned once per task, not once
+// per band, and a frame of 1080 rows still splits into 17 tasks for the cores to share.
+inline constexpr int kBandsPerTask = 8;
+
+// Rasterizes the triangles prepare() set up, band by band (a band is a row of tiles), groups of
+// kBandsPerTask bands in parallel: each band sees every triangle in order, so a pixel's result
+// does not depend on the threads. Each group scans the compact lists of the triangles' band
+// ranges, not their setups, and takes each triangle over its bands in the group, in turn.
+template <class PerTriangle>
+void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangle) {
+  Target::Scratch& scratch = scratch_of(target);
   scratch.band_counters.assign(static_cast<std::size_t>(target.tiles_y), Counters{});
-  tbb::parallel_for(0, target.tiles_y, [&](int band) {
-    Counters& c = scratch.band_counters[static_cast<std::size_t>(band)];
-    for (std::size_t t = 0; t < scratch.prepared.size(); ++t)
-      if (scratch.ranges[t].first <= band && band <= scratch.ranges[t].last)
-        per_triangle(scratch.prepared[t], band, c);
+  const int tasks = (target.tiles_y + kBandsPerTask - 1) / kBandsPerTask;
+  tbb::parallel_for(0, tasks, [&](int task) {
+    const int first = task * kBandsPerTask;
+    const int last = std::min(first + kBandsPerTask, target.tiles_y) - 1;
+    for (std::size_t c = 0; c < scratch.chunks; ++c) {
+      const SetupChunk& chunk = scratch.setup[c];
+      for (std::size_t t = 0; t < chunk.prepared.size(); ++t) {
+        const BandRange& range = chunk.ranges[t];
+        for (int band = std::max(first, range.first); band <= std::min(last, range.last); ++band)
+          per_triangle(chunk.prepared[t], band,
+                       scratch.band_counters[static_cast<std::size_t>(band)]);
+      }
+    }
   });
   for (const Counters& c : scratch.band_counters) counters += c;
 }
@@ -510,7 +556,7 @@ void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangl
 
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters) {
-  prepare(target, triangles, counters, scratch_of(target).prepared);
+  prepare(target, triangles, counters);
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     const auto id = static_cast<std::uint32_t>(first_id + p.triangle);
     float* depth = target.depth.data();
@@ -521,7 +567,7 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
           return TileDecision{TileVerdict::test, CountRule::zpass};
         },
         [depth, ids, id](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
-                         auto /*decided: never*/, CountRule) {
+                         auto /*checks: always test*/, CountRule) {
           const Floats stored = load_row<Floats>(depth + first, lanes);
           const Mask pass = covered & (z > stored);
           store_row(depth + first, pass ? z : stored, lanes);
@@ -555,7 +601,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   assert(weights.size() * 3 == triangles.size());
   assert(target.tile_work.empty() ||
          target.tile_work.size() == static_cast<std::size_t>(target.tiles_x) * target.tiles_y);
-  prepare(target, triangles, counters, scratch_of(target).prepared);
+  prepare(target, triangles, counters);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
   // one. It is accepted whole when every fragment passes against every stored depth, within the
@@ -581,6 +627,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     const bool all = zpass ? zlo > tile.zmax : zhi <= tile.zmin;
     return TileDecision{!some                  ? TileVerdict::skip
                         : all && within_bounds ? TileVerdict::accept
+                        : within_bounds        ? TileVerdict::test_depth
                                                : TileVerdict::test,
                         tile_rule};
   };
@@ -601,19 +648,20 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
         target, p.setup, band, c, work, tile_test,
         // By value: the stores into count may alias anything an int32 reference names.
         [depth, count, bounds, front_delta](std::size_t first, const Mask& covered, const Floats& z,
-                                            auto lanes, auto decided, CountRule tile_rule) {
+                                            auto lanes, auto checks, CountRule tile_rule) {
           // Depth as z-pass tests it: prefill and cover too; behind tests as z-fail does.
           const bool zpass = tile_rule != CountRule::zfail && tile_rule != CountRule::behind;
           const std::int32_t delta = tile_rule == CountRule::zfail ? -front_delta : front_delta;
-          if constexpr (decided) {
+          if constexpr (checks == TileVerdict::accept) {
             store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
                       lanes);
             return covered;
           }
           const Floats stored = load_row<Floats>(depth + first, lanes);
           const Mask in_front = z > stored;
-          const Mask pass = covered & (stored >= bounds.zmin) & (stored <= bounds.zmax) &
-                            (zpass ? in_front : ~in_front);
+          Mask pass = covered & (zpass ? in_front : ~in_front);
+          if constexpr (checks == TileVerdict::test)
+            pass &= (stored >= bounds.zmin) & (stored <= bounds.zmax);
           store_row(count + first, load_row<Mask>(count + first, lanes) + (pass & delta), lanes);
           return pass;
         });

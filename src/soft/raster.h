@@ -3,9 +3,10 @@
 //
 // Owns: clipping in homogeneous space, snapping to a fixed-point grid, exact edge functions
 // with a top-left fill rule, the per-pixel depth and signed-count buffers, the per-tile depth
-// bounds (hi-z), and counters of the work done. Each draw sets its triangles up once, then
-// rasterizes bands of one tile row in parallel (oneTBB); every band walks the triangles in order,
-// so results and counters do not depend on the thread count. Within a tile, pixels are tested a
+// bounds (hi-z), and counters of the work done. Each draw sets its triangles up once, in chunks
+// in parallel, then rasterizes bands of one tile row in parallel (oneTBB, a few bands a task);
+// every band walks the triangles in order, so results and counters do not depend on the thread
+// count. Within a tile, pixels are tested a
 // tile row (8 pixels) at a time in SIMD vectors: coverage by 32-bit edge functions, depth in
 // float from the tile's first pixel.
 //
