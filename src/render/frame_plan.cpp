@@ -404,12 +404,13 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
         points[topo.vertex_part[v]].push_back(q);
     }
     bounds[o] = {lo, hi, (lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, {}};
-    for (const std::vector<glm::vec3>& part : points) {
-      glm::vec3 part_lo(INFINITY), part_hi(-INFINITY);
-      for (const glm::vec3& q : part)
-        part_lo = glm::min(part_lo, q), part_hi = glm::max(part_hi, q);
-      bounds[o].casters.emplace_back(shape_of(part), glm::length(part_hi - part_lo) * 0.5f);
-    }
+    if (options.method == Method::split_plane)
+      for (const std::vector<glm::vec3>& part : points) {
+        glm::vec3 part_lo(INFINITY), part_hi(-INFINITY);
+        for (const glm::vec3& q : part)
+          part_lo = glm::min(part_lo, q), part_hi = glm::max(part_hi, q);
+        bounds[o].casters.emplace_back(shape_of(part), glm::length(part_hi - part_lo) * 0.5f);
+      }
     reach_lo = glm::min(reach_lo, lo);
     reach_hi = glm::max(reach_hi, hi);
   }
@@ -445,25 +446,27 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
       plan.prefill[l][o] = reaches_near && can_prefill;
       const SplitPlaneChoice choice = scene.objects[o].split_plane;
       const bool automatic = choice == SplitPlaneChoice::automatic;
-      for (const auto& [shape, radius] : bounds[o].casters) {
-        if (options.method != Method::split_plane || zfail) break;
-        std::optional<glm::vec4> plane;  // world, eye-relative
-        if (choice == SplitPlaneChoice::flat || (automatic && shape.flat))
-          plane = flat_plane(shape, plan.lights[l]);  // none edge-on: then as below
-        if (!plane) {
-          const bool ppl =
-              choice == SplitPlaneChoice::point_point_light || (automatic && shape.elongated);
-          plane = ppl ? point_point_light(shape.p1, shape.p2, plan.lights[l])
-                      : point_camera_light(shape.centroid, plan.lights[l]);
+      // Under split_plane, casters holds the whole object or each of its parts (else nothing); a
+      // volume drawn by z-fail whole (the light in the near plane) takes no plane.
+      if (!zfail)
+        for (const auto& [shape, radius] : bounds[o].casters) {
+          std::optional<glm::vec4> plane;  // world, eye-relative
+          if (choice == SplitPlaneChoice::flat || (automatic && shape.flat))
+            plane = flat_plane(shape, plan.lights[l]);  // none edge-on: then as below
+          if (!plane) {
+            const bool ppl =
+                choice == SplitPlaneChoice::point_point_light || (automatic && shape.elongated);
+            plane = ppl ? point_point_light(shape.p1, shape.p2, plan.lights[l])
+                        : point_camera_light(shape.centroid, plan.lights[l]);
+          }
+          FramePlan::PartSplit& split = plan.split[l][o].emplace_back();
+          split.plane = plane_to_clip * *plane;
+          if (automatic && options.split_planes == SplitPlanes::sampled) {
+            split.candidates.assign(1, split.plane);
+            for (const glm::vec4& candidate : split_plane_candidates(shape, radius, plan.lights[l]))
+              split.candidates.push_back(plane_to_clip * candidate);
+          }
         }
-        FramePlan::PartSplit& split = plan.split[l][o].emplace_back();
-        split.plane = plane_to_clip * *plane;
-        if (automatic && options.split_planes == SplitPlanes::sampled) {
-          split.candidates.assign(1, split.plane);
-          for (const glm::vec4& candidate : split_plane_candidates(shape, radius, plan.lights[l]))
-            split.candidates.push_back(plane_to_clip * candidate);
-        }
-      }
       (zfail                       ? stats.objects_zfail
        : !plan.split[l][o].empty() ? stats.objects_split
                                    : stats.objects_zpass) += 1;
