@@ -87,9 +87,11 @@ glm::vec4 point_point_light(const glm::vec3& p1, const glm::vec3& p2, const glm:
 // vertex from the axis); the thin axis (the least principal direction, by power iteration on
 // trace - covariance, whose largest eigenvalue is the trace minus the least), the interval of
 // the vertices' projections on it, and whether the object is flat: a hundred times thinner along
-// it than long, and not elongated (a rod is thin across both of its short axes).
+// it than long, and not elongated (a rod is thin across both of its short axes); and the radius
+// of the sphere about its bounding box.
 struct Shape {
   glm::vec3 centroid{0.0f};
+  float radius = 0.0f;
   glm::vec3 p1{0.0f}, p2{0.0f};
   bool elongated = false;
   glm::dvec3 thin_axis{0.0};
@@ -110,7 +112,13 @@ Shape shape_of(const std::vector<glm::vec3>& points) {
   Shape shape;
   if (points.empty()) return shape;
   glm::dvec3 mean(0.0);
-  for (const glm::vec3& p : points) mean += glm::dvec3(p);
+  glm::vec3 box_lo(INFINITY), box_hi(-INFINITY);
+  for (const glm::vec3& p : points) {
+    mean += glm::dvec3(p);
+    box_lo = glm::min(box_lo, p);
+    box_hi = glm::max(box_hi, p);
+  }
+  shape.radius = glm::length(box_hi - box_lo) * 0.5f;
   mean /= double(points.size());
   shape.centroid = glm::vec3(mean);
   glm::dmat3 covariance(0.0);
@@ -167,8 +175,7 @@ std::optional<glm::vec4> flat_plane(const Shape& shape, const glm::vec4& light) 
 // sends its whole volume behind the surfaces, Point-Camera-Light turned about the centre line
 // in steps of 15 degrees, tilted towards and away from the light, moved across by a quarter and
 // half of the object's radius, and Point-Point-Light: 39 planes (2 for a flat object).
-std::vector<glm::vec4> split_plane_candidates(const Shape& shape, float radius,
-                                              const glm::vec4& light) {
+std::vector<glm::vec4> split_plane_candidates(const Shape& shape, const glm::vec4& light) {
   std::vector<glm::vec4> planes{glm::vec4(0.0f), glm::vec4(0.0f, 0.0f, 1.0f, 1.0f)};
   if (shape.flat) return planes;
   constexpr double kDegree = std::numbers::pi / 180.0;
@@ -178,7 +185,7 @@ std::vector<glm::vec4> split_plane_candidates(const Shape& shape, float radius,
     const glm::vec4 turned = point_camera_light(shape.centroid, light, turn * kDegree);
     if (turned == glm::vec4(0.0f)) continue;
     for (const float across : {-0.5f, -0.25f, 0.25f, 0.5f})
-      planes.push_back(turned + glm::vec4(0.0f, 0.0f, 0.0f, across * radius));
+      planes.push_back(turned + glm::vec4(0.0f, 0.0f, 0.0f, across * shape.radius));
     for (const int tilt : {-30, -15, 15, 30})
       planes.push_back(point_camera_light(shape.centroid, light, turn * kDegree, tilt * kDegree));
   }
@@ -374,12 +381,10 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     near_rect[i] = glm::vec3(c) / c.w;
   }
   struct Bounds {
-    glm::vec3 lo, hi;  // the bounding box
-    glm::vec3 centre;  // of the box
-    float radius;      // of the sphere about it
-    // For split planes: the shape of the whole object, or of each of its parts, and the radius
-    // of the sphere about its box.
-    std::vector<std::pair<Shape, float>> casters;
+    glm::vec3 lo, hi;            // the bounding box
+    glm::vec3 centre;            // of the box
+    float radius;                // of the sphere about it
+    std::vector<Shape> casters;  // for split planes: the whole object's shape, or each part's
   };
   std::vector<Bounds> bounds(objects);
   const bool bounded = options.extrusion == Extrusion::bounded;
@@ -405,12 +410,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
     }
     bounds[o] = {lo, hi, (lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f, {}};
     if (options.method == Method::split_plane)
-      for (const std::vector<glm::vec3>& part : points) {
-        glm::vec3 part_lo(INFINITY), part_hi(-INFINITY);
-        for (const glm::vec3& q : part)
-          part_lo = glm::min(part_lo, q), part_hi = glm::max(part_hi, q);
-        bounds[o].casters.emplace_back(shape_of(part), glm::length(part_hi - part_lo) * 0.5f);
-      }
+      for (const std::vector<glm::vec3>& part : points) bounds[o].casters.push_back(shape_of(part));
     reach_lo = glm::min(reach_lo, lo);
     reach_hi = glm::max(reach_hi, hi);
   }
@@ -449,7 +449,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
       // Under split_plane, casters holds the whole object or each of its parts (else nothing); a
       // volume drawn by z-fail whole (the light in the near plane) takes no plane.
       if (!zfail)
-        for (const auto& [shape, radius] : bounds[o].casters) {
+        for (const Shape& shape : bounds[o].casters) {
           std::optional<glm::vec4> plane;  // world, eye-relative
           if (choice == SplitPlaneChoice::flat || (automatic && shape.flat))
             plane = flat_plane(shape, plan.lights[l]);  // none edge-on: then as below
@@ -463,7 +463,7 @@ FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStat
           split.plane = plane_to_clip * *plane;
           if (automatic && options.split_planes == SplitPlanes::sampled) {
             split.candidates.assign(1, split.plane);
-            for (const glm::vec4& candidate : split_plane_candidates(shape, radius, plan.lights[l]))
+            for (const glm::vec4& candidate : split_plane_candidates(shape, plan.lights[l]))
               split.candidates.push_back(plane_to_clip * candidate);
           }
         }

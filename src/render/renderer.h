@@ -65,8 +65,9 @@ Expected<SplitPlanes> parse_split_planes(std::string_view name);
 // shared vertices) a split plane of its own, as Laine 2005 §6 decomposes casters into
 // sub-objects, found here automatically: `each` (an object of 2 to kMaxSplitParts parts; one
 // plane for an object of more, so that a triangle soup's thousands of parts do not each cost
-// draws and a sampling), or one plane for the `whole` object. Parts cast their volumes apart from one another, so the side quads
-// drawn are the same either way; the depth bounds stay the object's.
+// draws and a sampling), or one plane for the `whole` object. Parts cast their volumes apart from
+// one another, so the side quads drawn are the same either way; the depth bounds stay the
+// object's.
 enum class SplitParts : std::uint8_t { each, whole };
 inline constexpr std::size_t kMaxSplitParts = 64;
 std::string_view to_string(SplitParts parts);

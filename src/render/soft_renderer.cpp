@@ -57,20 +57,27 @@ struct SoftRenderer::Pass {
   std::vector<soft::TileWork>* total_work;
 };
 
-void SoftRenderer::Grouped::regroup(std::span<const glm::vec4> triangles,
-                                    std::span<const std::int32_t> triangle_weights,
-                                    std::span<const std::uint32_t> keys, std::size_t key_count) {
+void SoftRenderer::Grouped::group(std::span<const glm::vec4> triangles,
+                                  std::span<const std::int32_t> triangle_weights,
+                                  std::span<const std::uint32_t> keys, std::size_t key_count) {
   offsets.assign(key_count + 1, 0);
   for (const std::uint32_t k : keys) ++offsets[k + 1];
   for (std::size_t k = 0; k < key_count; ++k) offsets[k + 1] += offsets[k];
-  tris.resize(triangles.size());
-  weights.resize(triangle_weights.size());
+  if (std::is_sorted(keys.begin(), keys.end())) {
+    tris = triangles;
+    weights = triangle_weights;
+    return;
+  }
+  sorted_tris.resize(triangles.size());
+  sorted_weights.resize(triangle_weights.size());
   cursor.assign(offsets.begin(), offsets.end() - 1);
   for (std::size_t t = 0; t < keys.size(); ++t) {
     const std::size_t at = cursor[keys[t]]++;
-    std::copy_n(&triangles[3 * t], 3, &tris[3 * at]);
-    weights[at] = triangle_weights[t];
+    std::copy_n(&triangles[3 * t], 3, &sorted_tris[3 * at]);
+    sorted_weights[at] = triangle_weights[t];
   }
+  tris = sorted_tris;
+  weights = sorted_weights;
 }
 
 void SoftRenderer::count_volume(const Pass& pass, std::size_t l, std::size_t o) {
@@ -122,10 +129,10 @@ void SoftRenderer::count_volume(const Pass& pass, std::size_t l, std::size_t o) 
                       plan.zfail[l][o] ? soft::CountRule::zfail : soft::CountRule::zpass,
                       stats.counts, bounds);
   } else {
-    volume_groups_.regroup(tris_, weights_, keys_, 2 * splits.size());
+    volume_groups_.group(tris_, weights_, keys_, 2 * splits.size());
     if (plan.prefill[l][o]) {
       if (!by_part) prefill_keys_.assign(prefill_weights_.size(), 0);
-      prefill_groups_.regroup(prefill_tris_, prefill_weights_, prefill_keys_, splits.size());
+      prefill_groups_.group(prefill_tris_, prefill_weights_, prefill_keys_, splits.size());
     }
     for (std::size_t p = 0; p < splits.size(); ++p) {
       const auto everywhere = volume_groups_.triangles_of(2 * p, 2 * p + 1);

@@ -44,21 +44,25 @@ class SoftRenderer final : public Renderer {
   // whichever way it faces; against the opaque layer's depths), into eye_log_.
   void filter_through_glass(const Pass& pass);
 
-  // Triangles (3 clip-space vertices each) and their weights, regrouped stably by a key per
-  // triangle: those of keys [first, last) are together, in order.
+  // Triangles (3 clip-space vertices each) and their weights, grouped by a key per triangle:
+  // those of keys [first, last) are together, in order. Triangles whose keys already run in
+  // order (a volume counted whole: its sides, then its caps) are viewed where they lie, which
+  // must outlive the view; others are copied into order, stably.
   struct Grouped {
-    std::vector<glm::vec4> tris;
-    std::vector<std::int32_t> weights;
-    std::vector<std::size_t> offsets;  // key k's are [offsets[k], offsets[k + 1])
-    std::vector<std::size_t> cursor;   // where the next of key k goes, while regrouping
+    std::span<const glm::vec4> tris;
+    std::span<const std::int32_t> weights;
+    std::vector<std::size_t> offsets;    // key k's are [offsets[k], offsets[k + 1])
+    std::vector<glm::vec4> sorted_tris;  // the copies, kept between frames
+    std::vector<std::int32_t> sorted_weights;
+    std::vector<std::size_t> cursor;  // where the next of key k goes, while copying
 
-    void regroup(std::span<const glm::vec4> triangles, std::span<const std::int32_t> weights,
-                 std::span<const std::uint32_t> keys, std::size_t key_count);
+    void group(std::span<const glm::vec4> triangles, std::span<const std::int32_t> triangle_weights,
+               std::span<const std::uint32_t> keys, std::size_t key_count);
     std::span<const glm::vec4> triangles_of(std::size_t first, std::size_t last) const {
-      return std::span(tris).subspan(3 * offsets[first], 3 * (offsets[last] - offsets[first]));
+      return tris.subspan(3 * offsets[first], 3 * (offsets[last] - offsets[first]));
     }
     std::span<const std::int32_t> weights_of(std::size_t first, std::size_t last) const {
-      return std::span(weights).subspan(offsets[first], offsets[last] - offsets[first]);
+      return weights.subspan(offsets[first], offsets[last] - offsets[first]);
     }
   };
 

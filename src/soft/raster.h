@@ -6,9 +6,8 @@
 // bounds (hi-z), and counters of the work done. Each draw sets its triangles up once, in chunks
 // in parallel, then rasterizes bands of one tile row in parallel (oneTBB, a few bands a task);
 // every band walks the triangles in order, so results and counters do not depend on the thread
-// count. Within a tile, pixels are tested a
-// tile row (8 pixels) at a time in SIMD vectors: coverage by 32-bit edge functions, depth in
-// float from the tile's first pixel.
+// count. Within a tile, pixels are tested a tile row (8 pixels) at a time in SIMD vectors:
+// coverage by 32-bit edge functions, depth in float from the tile's first pixel.
 //
 // Conventions:
 //   - Input vertices are in clip space as core/projection.h makes it: x, y in [-w, w] and z in
