@@ -13,8 +13,8 @@
 
 #include "image_file.h"
 #include "plot.h"
-#include "render/soft_renderer.h"
 #include "scene/scene.h"
+#include "soft/soft_backend.h"
 
 namespace shadowvol {
 namespace {
@@ -58,7 +58,7 @@ struct Series {
 
   // The count passes' work and the split-plane sampler's: what the method cost in all.
   void add(const FrameStats& s) {
-    soft::Counters c = s.counts;
+    raster::Counters c = s.counts;
     c += s.split_sampling;
     tiles_processed.push_back(c.tiles_touched);
     nonculled_tiles.push_back(c.tiles_touched - c.tiles_skipped);
@@ -83,13 +83,13 @@ const Counter kCounters[] = {{"tiles processed", &Series::tiles_processed},
 // included), and its updates. A choice per part of an object (SplitParts::each) can do better.
 struct Oracle {
   std::uint64_t processed = 0, updated = 0;
-  using Work = std::vector<std::vector<soft::TileWork>>;  // per object, per tile
+  using Work = std::vector<std::vector<raster::TileWork>>;  // per object, per tile
   void add(const Work& zpass, const Work& zfail) {
     for (std::size_t o = 0; o < zpass.size(); ++o)
       for (std::size_t t = 0; t < zpass[o].size(); ++t) {
-        const soft::TileWork& a = zpass[o][t];
-        const soft::TileWork& b = zfail[o][t];
-        const soft::TileWork& best = a.pixels_processed <= b.pixels_processed ? a : b;
+        const raster::TileWork& a = zpass[o][t];
+        const raster::TileWork& b = zfail[o][t];
+        const raster::TileWork& best = a.pixels_processed <= b.pixels_processed ? a : b;
         processed += best.pixels_processed;
         updated += best.pixels_updated;
       }
@@ -148,7 +148,9 @@ int run_spsv_suite(const SuiteOptions& options) {
     nlohmann::json scene_json{{"name", scene.name}, {"methods", nlohmann::json::object()}};
     // Frame by frame, each method with a renderer (and volume cache) of its own; the baselines
     // record their work per object and tile, for the oracle.
-    std::vector<SoftRenderer> renderers(std::size(kMethods));
+    std::vector<Renderer> renderers;
+    for (std::size_t m = 0; m < std::size(kMethods); ++m)
+      renderers.push_back(soft::soft_renderer());
     std::vector<Series> all_series(std::size(kMethods));
     Oracle oracle;
     for (int f = 0; f < options.frames; ++f) {

@@ -23,7 +23,7 @@
 #include "bench_suite.h"
 #include "core/topology.h"
 #include "core/volume.h"
-#include "gl/backend.h"
+#include "backend/backend.h"
 #include "gl/context.h"
 #include "image_file.h"
 #include "render/heatmap.h"
@@ -389,13 +389,13 @@ int render(const RenderArgs& args) {
   for (int i = 0; i < args.frames; ++i) {
     if (args.frames > 1)
       status.show("frame " + std::to_string(i + 1) + " of " + std::to_string(args.frames));
-    frame = (*renderer)->render(scene_at_frame(scene, i), options);
+    (*renderer)->render(scene_at_frame(scene, i), options, frame);
   }
   status.clear();
   const Image& img = frame.image;
   if (auto ok = write_png(args.out, img); !ok) return fail(ok.error().message);
   std::cout << "wrote " << args.out << " (" << scene.name << ", " << img.width << "x" << img.height
-            << ", " << method_label(options) << ", " << (*renderer)->backend() << ")\n";
+            << ", " << method_label(options) << ", " << (*renderer)->backend_name() << ")\n";
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
     if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
@@ -422,7 +422,7 @@ int render(const RenderArgs& args) {
         "plane %d, volumes built %d, reused %d\n",
         s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
         s.volumes_built, s.volumes_reused);
-    if ((*renderer)->backend() == "soft")
+    if ((*renderer)->backend_name() == "soft")
       std::printf(
           "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
           "or depth bounds,"
@@ -460,7 +460,7 @@ int verify(const VerifyArgs& args) {
   const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
   auto renderer = make_frame_renderer(*resolved);
   if (!renderer) return fail(renderer.error().message);
-  const std::string backend((*renderer)->backend());
+  const std::string backend((*renderer)->backend_name());
   const Frame frame = (*renderer)->render(scene, options);
   auto reference = trace_reference(scene, options.width, options.height);
   if (!reference) return fail(reference.error().message);
@@ -585,7 +585,7 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
     status.clear();
     const double n = frames;
     nlohmann::json row{{"scene", resolved->scene.name},
-                       {"backend", std::string(renderer->backend())},
+                       {"backend", std::string(renderer->backend_name())},
                        {"width", options.width},
                        {"height", options.height},
                        {"method", std::string(to_string(options.method))},
@@ -605,8 +605,8 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
       row["all_opaque_frame_ms"] = opaque_wall / n;
       row["transparent_over_opaque"] = wall / opaque_wall;
     }
-    if (renderer->backend() == "soft") {  // the rasterizer's work, per frame (gl has no counters)
-      const auto per_frame = [frames](const soft::Counters& c) {
+    if (renderer->backend_name() == "soft") {  // the rasterizer's work, per frame (gl has no counters)
+      const auto per_frame = [frames](const raster::Counters& c) {
         return nlohmann::json{{"triangles", c.triangles_in / frames},
                               {"tiles_touched", c.tiles_touched / frames},
                               {"tiles_skipped", c.tiles_skipped / frames},
@@ -622,12 +622,12 @@ int bench(const FrameArgs& frame, const std::vector<std::string>& scenes, int fr
       std::printf(
           "%-16s %s %dx%d: %7.2f ms a frame (depth %.2f, volumes %.2f, counts %.2f, shade %.2f, "
           "read-back %.2f)\n",
-          resolved->scene.name.c_str(), std::string(renderer->backend()).c_str(), options.width,
+          resolved->scene.name.c_str(), std::string(renderer->backend_name()).c_str(), options.width,
           options.height, wall / n, sum.ms_depth / n, sum.ms_volumes / n, sum.ms_counts / n,
           sum.ms_shade / n, sum.ms_readback / n);
       if (glass)
         std::printf("%-16s %s %dx%d: %7.2f ms a frame all opaque: transparency costs %.2fx\n", "",
-                    std::string(renderer->backend()).c_str(), options.width, options.height,
+                    std::string(renderer->backend_name()).c_str(), options.width, options.height,
                     opaque_wall / n, wall / opaque_wall);
     }
   }

@@ -278,11 +278,14 @@ int run_viewer(const ViewArgs& args) {
   glfwSwapInterval(args.frames > 0 ? 0 : 1);
   int status = 0;
   {
-    auto renderer = gl::GlRenderer::create(args.gl);
-    if (!renderer) {
+    auto made = gl::GlBackend::create(args.gl);
+    if (!made) {
       glfwDestroyWindow(window);
-      return fail(renderer.error().message);
+      return fail(made.error().message);
     }
+    gl::GlBackend& backend = **made;
+    Renderer renderer(std::move(*made));
+    Frame frame;
     auto text = TextOverlay::create();
     if (!text) {
       glfwDestroyWindow(window);
@@ -319,17 +322,16 @@ int run_viewer(const ViewArgs& args) {
       gl::GlSettings settings = controls.gl;
       if (!gl::check_settings(settings, options.generator).ok())
         settings.volumes = gl::VolumePath::cpu;
-      (*renderer)->set_settings(settings);
+      backend.set_settings(settings);
 
       const auto start = std::chrono::steady_clock::now();
-      FrameStats stats;
       if (options.show_volumes) {  // the edges are drawn over a read-back image
-        const Frame frame = (*renderer)->render(scene, options);
+        renderer.render(scene, options, frame);
         show_image(frame.image);
-        stats = frame.stats;
       } else {
-        stats = (*renderer)->present(scene, options);
+        renderer.present(scene, options, frame);
       }
+      const FrameStats& stats = frame.stats;
       const double ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
@@ -339,7 +341,7 @@ int run_viewer(const ViewArgs& args) {
       std::vector<std::string> lines;
       std::snprintf(line, sizeof line, "%.1f ms a frame (depth %.1f, counts %.1f, shade %.1f)  %s",
                     smoothed_ms, stats.ms_depth, stats.ms_counts, stats.ms_shade,
-                    (*renderer)->info().renderer.c_str());
+                    backend.info().renderer.c_str());
       lines.push_back(line);
       std::snprintf(line, sizeof line, "method %s [M]  volumes %s [G]  edges %s [V]  %s",
                     std::string(to_string(options.method)).c_str(),

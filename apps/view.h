@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "gl/gl_renderer.h"
+#include "gl/gl_backend.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 

@@ -21,11 +21,11 @@
 #include <tbb/parallel_reduce.h>
 
 #include "core/topology.h"
-#include "gl/backend.h"
-#include "render/soft_renderer.h"
+#include "backend/backend.h"
+#include "soft/soft_backend.h"
 #include "render/volume_builder.h"
 #include "scene/scene.h"
-#include "scene/shapes.h"
+#include "core/shapes.h"
 
 namespace {
 
@@ -105,7 +105,7 @@ void BM_RenderDemo1080(benchmark::State& state) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(state.range(0)));
   const Scene scene = *builtin_scene("demo");
-  SoftRenderer renderer;
+  Renderer renderer = soft::soft_renderer();
   const RenderOptions options{1920, 1080, Method::automatic, Generator::automatic};
   FrameStats sum;
   for (auto _ : state) {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/mesh.h"
-#include "scene/shapes.h"
+#include "core/shapes.h"
 
 namespace shadowvol::testing {
 

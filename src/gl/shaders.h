@@ -1,10 +1,10 @@
-// shadowvol gl: the GLSL of the OpenGL backend (gl_renderer.cpp is its only reader).
+// shadowvol gl: the GLSL of the OpenGL backend (gl_backend.cpp is its only reader).
 //
 // Why each piece is as it is:
 //   - Every position reaches clip space through to_clip() on a vec4, in every stage, so that a
 //     light cap and the surface it lies on get bit-identical depths (GPU Gems 3 §11.3.2: "transform
 //     the actual rendered scene geometry exactly like the geometry in the shadow volume shader").
-//   - Uniform locations are fixed in the source; gl_renderer.cpp names them in one enum.
+//   - Uniform locations are fixed in the source; gl_backend.cpp names them in one enum.
 //   - The geometry shader decides a face's facing from its three vertices symmetrically (three
 //     normals, three light directions), so that a face gets the same answer as itself and as a
 //     neighbour (GPU Gems 3 listing 11-1), and a face of zero area gets 0 and casts nothing.

@@ -1,15 +1,19 @@
-// shadowvol render: what every backend decides the same way before it draws a frame.
+// shadowvol render: what a frame draws, decided once before any backend draws it.
 //
-// Owns: the eye-relative matrices of a frame, the per-object, per-light choice of z-pass or
-// z-fail, the volume cache (volumes built on the CPU, rebuilt only when an object's light
-// changes), the mapping from a depth pass's face ids back to (object, face), and the shading
-// constants. Both backends call these, so that they draw the same volumes with the same method
-// and light them the same way; only the drawing differs.
+// Owns: the eye-relative matrices of a frame, per object its transform and face ids, the groups
+// of transparent casters, and per (light, object) a VolumePlan: the rule its volume is counted
+// by (z-pass, z-fail or per tile by split planes), which caps count where, the pre-fill, the
+// light in the object's space, the generator, the far plane and the depth bounds. The backends
+// read the plan and derive nothing; what they share of shading is render/shading.h.
+//
+// Papers: GPU Gems 3 ch. 11 §11.2.3 (z-pass unless the volume may reach the near plane;
+// accel/near_plane.h), Laine 2005 §4, §6 and §7 (split planes per part, depth bounds;
+// accel/split_planes.h, accel/depth_bounds.h), Hornus et al. 2005 (ZP+), Kim, Kim & Turk 2008
+// §2 (transparent casters in groups of one material).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -19,87 +23,125 @@
 #include <glm/vec4.hpp>
 
 #include "core/volume.h"
-#include "render/renderer.h"
-#include "render/volume_builder.h"
+#include "raster/raster.h"
+#include "render/frame.h"
 #include "scene/scene.h"
 
 namespace shadowvol {
 
+// How the pixels of a volume choose between z-pass and z-fail.
+enum class VolumeRule : std::uint8_t {
+  zpass,  // every pixel counts the faces in front of its surface
+  zfail,  // every pixel counts those behind it, caps included
+  split,  // per tile, by the side of the part's split plane the tile's surfaces lie on
+};
+
+// How the tiles of one part of a volume choose their rule under VolumeRule::split. `plane`: its
+// split plane in clip space (Laine 2005 §4: Point-Camera-Light or Point-Point-Light; or ours,
+// `flat`, as the object's SplitPlaneChoice says). `candidates`: under SplitPlaneChoice::automatic
+// and SplitPlanes::sampled, the planes (clip space) the software backend weighs by sampling the
+// frame's tiles (soft/split_sampler.h), drawing by the cheapest: `plane` first, then both
+// whole-volume rules and, but for flat parts, Point-Camera-Light turned, tilted and moved, and
+// Point-Point-Light; else empty.
+struct PartSplit {
+  glm::vec4 plane{0.0f};
+  std::vector<glm::vec4> candidates;
+};
+
+// What a volume's depth bounds are computed from.
+struct DepthBoundsInputs {
+  glm::vec3 lo{0.0f}, hi{0.0f};  // the object's bounding box
+  glm::vec4 light{0.0f}, far_plane{0.0f};
+  glm::mat4 view_proj{1.0f};
+  bool operator==(const DepthBoundsInputs&) const = default;
+};
+
+// One object's volume for one light.
+struct VolumePlan {
+  VolumeRule rule = VolumeRule::zpass;
+  // Z-pass counts start from the near-plane pre-fill (ZP+): under Method::zpass_prefill, and in
+  // a split plane's z-pass tiles, where the volume may reach the near plane.
+  bool prefill = false;
+  // The caps count where z-fail does (VolumeRule::zfail, and a split plane's z-fail tiles).
+  bool counts_caps = false;
+  // A transparent caster is not in the depth buffer, so the surfaces seen through it lie behind
+  // its light caps: its light caps count under every rule (Kim et al. §1.2, Fig. 5).
+  bool light_caps_everywhere = false;
+  // What the volume is built with, in the object's own space: the generator (resolved for the
+  // object's mesh), caps (where any rule counts them or the pre-fill projects them), the far
+  // plane, and under a split plane per part, each primitive's part.
+  VolumeOptions build;
+  glm::vec4 object_light{0.0f};  // the light in the object's own space
+  // The far plane the volume ends on, eye-relative (core/volume.h): under Extrusion::bounded, a
+  // plane beyond the scene and the near plane; else, and where no plane can end it well, the
+  // plane at infinity.
+  glm::vec4 far_plane = kPlaneAtInfinity;
+  // Laine 2005 §7's depth bounds: the window depths of the shadow volume of the object's
+  // bounding box (ended on the same far plane) where it meets the view frustum. The software
+  // count passes skip every pixel whose stored depth lies outside them. Empty (zmin > zmax)
+  // where the box's volume is out of view.
+  raster::DepthBounds depth_bounds;
+  // What depth_bounds was computed from: a plan reused for the next frame recomputes them only
+  // where these changed (each takes a shadow volume of the box).
+  std::optional<DepthBoundsInputs> depth_bounds_of;
+  // Under VolumeRule::split: one PartSplit per part of the object (Topology::vertex_part) under
+  // SplitParts::each, or one for the whole volume; else empty.
+  std::vector<PartSplit> split;
+
+  // Whether the parts are counted apart, each by its own split plane.
+  bool by_part() const { return split.size() > 1; }
+};
+
+// One object of the frame.
+struct ObjectPlan {
+  glm::mat4 model{1.0f};  // its transform, eye-relative (DESIGN.md "Numerics")
+  int weight_sign = 1;    // -1 where the transform mirrors (volume.h)
+  // The depth pass gives face f the id first_id + f.
+  std::uint32_t first_id = 0;
+  int glass_group = -1;  // index into FramePlan::glass, or -1 for an opaque object
+  // Its bounding box, eye-relative (lo > hi for an object without vertices).
+  glm::vec3 lo{0.0f}, hi{0.0f};
+};
+
+// The transparent casters of one material (Kim, Kim & Turk 2008 §2): what each of their
+// surfaces between a point and the light adds to the point's log light intensity.
+struct GlassGroup {
+  Material material;
+  // The logarithm of the material's transmittance per channel (kLogOfZero for a channel it
+  // passes none of).
+  glm::vec3 log_transmittance{0.0f};
+  std::vector<std::size_t> members;  // its objects, in order
+};
+
 struct FramePlan {
   glm::mat4 view_proj{1.0f};  // of eye-relative space
   glm::mat4 inv_view_proj{1.0f};
-  std::vector<glm::mat4> model;   // per object: its transform, eye-relative (DESIGN.md "Numerics")
-  std::vector<int> weight_sign;   // per object: -1 where the transform mirrors (volume.h)
-  std::vector<glm::vec4> lights;  // per light: its position, eye-relative
-  // The depth pass gives face f of object o the id first_id[o] + f; first_id has one entry more
-  // than there are objects, the total.
-  std::vector<std::uint32_t> first_id;
-  std::vector<std::vector<bool>> zfail;  // [light][object]: draw this volume by z-fail
-  // Under Method::split_plane, how the tiles of one part of a volume choose their rule. `plane`:
-  // its split plane in clip space (Laine 2005 §4: Point-Camera-Light or Point-Point-Light; or
-  // ours, `flat`, as the object's SplitPlaneChoice says). `candidates`: under
-  // SplitPlaneChoice::automatic and SplitPlanes::sampled, the planes (clip space) the software
-  // backend weighs by sampling the frame's tiles (soft/split_sampler.h), drawing by the cheapest:
-  // `plane` first, then both whole-volume rules and, but for flat parts, Point-Camera-Light
-  // turned, tilted and moved, and Point-Point-Light; else empty.
-  struct PartSplit {
-    glm::vec4 plane{0.0f};
-    std::vector<glm::vec4> candidates;
-  };
-  // [light][object]: under Method::split_plane, one PartSplit per part of the object
-  // (Topology::vertex_part) under SplitParts::each, or one for the whole volume; none where the
-  // volume is drawn by one rule whole.
-  std::vector<std::vector<std::vector<PartSplit>>> split;
-  // [light][object]: z-pass counts of this volume start from the near-plane pre-fill (ZP+):
-  // under Method::zpass_prefill, and in a split plane's z-pass tiles, where the volume may
-  // reach the near plane.
-  std::vector<std::vector<bool>> prefill;
-  // [light][object]: the far plane the volume ends on, eye-relative (core/volume.h): under
-  // Extrusion::bounded, a plane beyond the scene and the near plane; else, and where no plane
-  // can end it well, the plane at infinity.
-  std::vector<std::vector<glm::vec4>> far_plane;
-  // [light][object]: the depth bounds of the volume, as Laine 2005 §7 makes them for his
-  // comparison methods: the window depths of the shadow volume of the object's bounding box
-  // (ended on the same far plane) where it meets the view frustum. The software count passes
-  // skip every pixel whose stored depth lies outside them. Empty (zmin > zmax) where the box's
-  // volume is out of view.
-  std::vector<std::vector<soft::DepthBounds>> depth_bounds;
-  // Transparent casters (Kim, Kim & Turk 2008 §2): per object, the index of its material's group
-  // in glass_log_transmittance, or -1 for an opaque object; per group (one per distinct
-  // transparent material, in order of first use), the logarithm of its transmittance per channel
-  // (kLogOfZero for a channel it passes none of): what each of its surfaces between a point and
-  // the light adds to the point's log light intensity.
-  std::vector<int> glass_group;
-  std::vector<glm::vec3> glass_log_transmittance;
-  std::vector<std::vector<std::size_t>> glass_members;  // per group: its objects, in order
+  std::vector<ObjectPlan> objects;
+  std::vector<glm::vec4> lights;    // per light: its position, eye-relative
+  std::vector<GlassGroup> glass;    // in order of first use; empty without transparent casters
+  std::uint32_t id_count = 0;       // the depth pass's ids are [0, id_count)
+  std::vector<VolumePlan> volumes;  // [light * objects + object]
 
-  // Whether the volume of object o for light l counts its caps: z-fail does, and so do a split
-  // plane's z-fail tiles. The volume is built with caps also where the pre-fill projects them.
-  bool counts_caps(std::size_t l, std::size_t o) const {
-    return zfail[l][o] || !split[l][o].empty();
+  const VolumePlan& volume(std::size_t light, std::size_t object) const {
+    return volumes[light * objects.size() + object];
   }
-  // Whether the volume's parts are counted apart, each by its own split plane: the volume is
-  // built with the part of each primitive (VolumeOptions::parts).
-  bool splits_by_part(std::size_t l, std::size_t o) const { return split[l][o].size() > 1; }
-  // A transparent caster is not in the depth buffer, so the surfaces seen through it lie behind
-  // its light caps: its light caps count under every rule (Kim et al. §1.2, Fig. 5).
-  bool counts_light_caps_everywhere(std::size_t o) const { return glass_group[o] >= 0; }
-  bool builds_caps(std::size_t l, std::size_t o) const {
-    return counts_caps(l, o) || prefill[l][o] || counts_light_caps_everywhere(o);
+  VolumePlan& volume(std::size_t light, std::size_t object) {
+    return volumes[light * objects.size() + object];
   }
-
-  // far_plane[l][o] in the object's own space, where its volume is built.
-  glm::vec4 object_far_plane(std::size_t l, std::size_t o) const;
-
+  bool has_glass() const { return !glass.empty(); }
+  bool transparent(std::size_t object) const { return objects[object].glass_group >= 0; }
   // (object, face) of a depth-pass id, or object -1 when the id is past the last face.
   std::pair<std::int32_t, std::uint32_t> object_of(std::uint32_t id) const;
 };
 
-// Decides everything above for this scene and these options. `auto` takes z-fail for an object
-// only where its bounding sphere may put part of the near-plane rectangle in its shadow
-// (GPU Gems 3 §11.2.3). `spsv` gives every object a split plane, and `zp+db` draws by z-pass;
-// both pre-fill where `auto` would take z-fail, and take z-fail where the light lies in the near
-// plane, which no pre-fill can see. Counts the objects of each method into stats.
+// Decides everything above for this scene and these options into `plan`, reusing its storage.
+// `auto` takes z-fail for an object only where its bounding sphere may put part of the
+// near-plane rectangle in its shadow (GPU Gems 3 §11.2.3). `spsv` gives every object a split
+// plane, and `zp+db` draws by z-pass; both pre-fill where `auto` would take z-fail, and take
+// z-fail where the light lies in the near plane, which no pre-fill can see. Counts the objects of
+// each method into stats.
+void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& plan,
+                FrameStats& stats);
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
 
 // The generator that builds an object's volume: `requested`, except that `automatic` takes
@@ -116,50 +158,5 @@ glm::vec3 log_transmittance(const Material& material);
 // The light in the object's own space (the inverse of its transform, in double), where its
 // volume is built whether on the CPU or in a geometry shader.
 glm::vec4 object_space_light(const SceneObject& object, const glm::vec4& light);
-
-// The CPU-built volumes of the last frame, per light and object, in each object's own space.
-class VolumeCache {
- public:
-  // Rebuilds (in parallel) the volumes whose object's light, seen from the object, generator or
-  // need of caps changed since the last call; counts built and reused into stats. Returns, per
-  // object, whether its volume was rebuilt.
-  std::vector<bool> update(const Scene& scene, const FramePlan& plan, std::size_t light,
-                           Generator generator, FrameStats& stats);
-  const VolumeBuffer& volume(std::size_t light, std::size_t object) const {
-    return cache_[light][object].volume;
-  }
-
- private:
-  struct Entry {
-    // Held, not just pointed to: while cached, no other topology can take its address.
-    std::shared_ptr<const Topology> topology;
-    glm::vec4 light{0.0f};
-    VolumeOptions options;
-    VolumeBuffer volume;
-  };
-  VolumeBuilder builder_;
-  std::vector<std::vector<Entry>> cache_;  // [light][object]
-};
-
-// Draws the edges of every side quad of the cached volumes over the image (the silhouette edge
-// and its two rays to infinity, clipped at the near plane), one colour per light.
-void overlay_volumes(Image& image, const Scene& scene, const FramePlan& plan,
-                     const VolumeCache& volumes);
-
-// The shading both backends use (the OpenGL backend passes these to its shaders as uniforms):
-// ambient * albedo, plus per unshadowed light Lambert + Blinn-Phong, lit on the side the eye
-// sees; a vertical gradient behind everything; sRGB out.
-namespace shading {
-inline constexpr float kSpecular = 0.25f;
-inline constexpr float kShininess = 48.0f;
-inline constexpr glm::vec3 kBackgroundTop{0.26f, 0.28f, 0.22f};
-inline constexpr glm::vec3 kBackgroundBottom{0.16f, 0.18f, 0.22f};
-// The background at row y of h (row 0 at the top).
-glm::vec3 background(int y, int h);
-float to_srgb(float linear);
-// lround(to_srgb(linear) * 255), exactly, by a search among the 255 linear values where the 8-bit
-// code steps (found once): a frame encodes millions of channels, and pow is most of its cost.
-std::uint8_t to_srgb8(float linear);
-}  // namespace shading
 
 }  // namespace shadowvol

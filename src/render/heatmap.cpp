@@ -36,13 +36,13 @@ void put(Image& image, int x, int y, const glm::vec3& rgb) {
 
 Heatmap tile_work_heatmap(const Frame& frame) {
   const int w = frame.image.width, h = frame.image.height;
-  const int tiles_x = (w + soft::kTileSize - 1) / soft::kTileSize;
+  const int tiles_x = (w + raster::kTileSize - 1) / raster::kTileSize;
   assert(frame.tile_work.size() ==
-         static_cast<std::size_t>(tiles_x) * ((h + soft::kTileSize - 1) / soft::kTileSize));
+         static_cast<std::size_t>(tiles_x) * ((h + raster::kTileSize - 1) / raster::kTileSize));
   const auto tile_pixels = [&](std::size_t t) {
-    const int x0 = static_cast<int>(t % tiles_x) * soft::kTileSize;
-    const int y0 = static_cast<int>(t / tiles_x) * soft::kTileSize;
-    return double(std::min(soft::kTileSize, w - x0) * std::min(soft::kTileSize, h - y0));
+    const int x0 = static_cast<int>(t % tiles_x) * raster::kTileSize;
+    const int y0 = static_cast<int>(t / tiles_x) * raster::kTileSize;
+    return double(std::min(raster::kTileSize, w - x0) * std::min(raster::kTileSize, h - y0));
   };
   Heatmap out;
   for (std::size_t t = 0; t < frame.tile_work.size(); ++t)
@@ -57,8 +57,8 @@ Heatmap tile_work_heatmap(const Frame& frame) {
         const std::uint8_t* src = &frame.image.rgba[4 * (static_cast<std::size_t>(y) * w + x)];
         const float grey = 0.35f * (0.3f * src[0] + 0.59f * src[1] + 0.11f * src[2]);
         const std::size_t t =
-            static_cast<std::size_t>(y / soft::kTileSize) * tiles_x + x / soft::kTileSize;
-        const soft::TileWork& work = frame.tile_work[t];
+            static_cast<std::size_t>(y / raster::kTileSize) * tiles_x + x / raster::kTileSize;
+        const raster::TileWork& work = frame.tile_work[t];
         const double passes =
             (panel == 0 ? work.pixels_processed : work.pixels_updated) / tile_pixels(t);
         const glm::vec3 rgb =

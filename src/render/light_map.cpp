@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "render/frame_plan.h"
+#include "render/shading.h"
 
 namespace shadowvol {
 

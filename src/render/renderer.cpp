@@ -1,66 +1,143 @@
 #include "render/renderer.h"
 
-#include <string>
+#include <cassert>
+#include <chrono>
+#include <utility>
 
-#include "core/names.h"
-#include "soft/raster.h"
+#include "render/volume_overlay.h"
 
 namespace shadowvol {
-std::string_view to_string(Method method) {
-  switch (method) {
-    case Method::zpass:
-      return "zpass";
-    case Method::zfail:
-      return "zfail";
-    case Method::automatic:
-      return "auto";
-    case Method::split_plane:
-      return "spsv";
-    case Method::zpass_prefill:
-      return "zp+db";
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Empties the stats for a new frame, keeping zfail_lights' storage.
+void reset(FrameStats& stats) {
+  std::vector<int> zfail_lights = std::move(stats.zfail_lights);
+  stats = {};
+  stats.zfail_lights = std::move(zfail_lights);
+}
+
+// Sizes the layer's per-light masks (and light, with transparent casters) in place: a copy
+// would touch every page twice, and a frame of the same size allocates nothing.
+void size_layer(SurfaceLayer& layer, std::size_t lights, std::size_t pixels, bool glass) {
+  layer.shadowed.resize(lights);
+  for (std::vector<std::uint8_t>& mask : layer.shadowed) mask.resize(pixels);
+  layer.transmitted.resize(glass ? lights : 0);
+  for (std::vector<glm::vec3>& light : layer.transmitted) light.resize(pixels);
+}
+
+// Runs one step of the frame and adds its time into `into`, the backend's work included.
+template <class Step>
+void timed(FrameBackend& backend, double& into, Step&& step) {
+  backend.finish();
+  const auto start = Clock::now();
+  step();
+  backend.finish();
+  into += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+Renderer::Renderer(std::unique_ptr<FrameBackend> backend) : backend_(std::move(backend)) {
+  assert(backend_);
+}
+
+void Renderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
+  draw(scene, options, frame, true);
+}
+
+Frame Renderer::render(const Scene& scene, const RenderOptions& options) {
+  Frame frame;
+  draw(scene, options, frame, true);
+  return frame;
+}
+
+void Renderer::present(const Scene& scene, const RenderOptions& options, Frame& frame) {
+  assert(backend_->can_present());
+  draw(scene, options, frame, false);
+  backend_->present();
+}
+
+void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& frame,
+                    bool read_back) {
+  assert(check_options(options).ok());
+  assert(backend_->supports(options).ok());
+  FrameStats& stats = frame.stats;
+  reset(stats);
+  plan_frame(scene, options, plan_, stats);
+  // A backend whose targets are memory fills the frame whatever is asked.
+  read_back = read_back || !backend_->can_present();
+  const FrameInputs in{scene, options, plan_, volumes_, frame, read_back};
+  const std::size_t pixels = static_cast<std::size_t>(options.width) * options.height;
+  const std::size_t lights = scene.lights.size();
+  const bool glass = plan_.has_glass();
+
+  backend_->begin_frame(in);
+  // A layer: its depth pass over the depth target as it stands, its ids, then per light its
+  // shadows and light.
+  auto draw_layer = [&](Layer layer, SurfaceLayer& out) {
+    timed(*backend_, stats.ms_depth, [&] { backend_->depth_pass(layer); });
+    for (std::size_t o = 0; o < scene.objects.size(); ++o)
+      if (plan_.transparent(o) == (layer == Layer::glass))
+        stats.triangles += scene.objects[o].mesh->triangle_count();
+    if (read_back) {
+      timed(*backend_, stats.ms_readback, [&] { backend_->read_ids(layer, out); });
+      size_layer(out, lights, pixels, glass);
+    }
+    for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out);
+  };
+  draw_layer(Layer::opaque, frame);
+  if (glass) {
+    timed(*backend_, stats.ms_depth, [&] { backend_->see_through(); });  // a surface pass
+    draw_layer(Layer::glass, frame.glass);
+  } else {
+    frame.glass.object.clear();
+    frame.glass.face.clear();
+    frame.glass.shadowed.clear();
+    frame.glass.transmitted.clear();
   }
-  return "unknown";
+  timed(*backend_, stats.ms_shade, [&] { backend_->shade(); });
+  if (read_back) {
+    timed(*backend_, stats.ms_readback, [&] { backend_->read_image(frame.image); });
+    if (options.show_volumes) overlay_volumes(frame.image, scene, plan_, volumes_);
+  }
 }
 
-Expected<Method> parse_method(std::string_view name) {
-  return parse_name(
-      name,
-      {Method::zpass, Method::zfail, Method::automatic, Method::split_plane, Method::zpass_prefill},
-      "method");
-}
-
-std::string_view to_string(Extrusion extrusion) {
-  return extrusion == Extrusion::infinite ? "infinite" : "bounded";
-}
-
-Expected<Extrusion> parse_extrusion(std::string_view name) {
-  return parse_name(name, {Extrusion::infinite, Extrusion::bounded}, "extrusion");
-}
-
-std::string_view to_string(SplitPlanes planes) {
-  return planes == SplitPlanes::laine ? "laine" : "sampled";
-}
-
-Expected<SplitPlanes> parse_split_planes(std::string_view name) {
-  return parse_name(name, {SplitPlanes::laine, SplitPlanes::sampled}, "split-plane construction");
-}
-
-std::string_view to_string(SplitParts parts) {
-  return parts == SplitParts::each ? "each" : "whole";
-}
-
-Expected<SplitParts> parse_split_parts(std::string_view name) {
-  return parse_name(name, {SplitParts::each, SplitParts::whole}, "split-plane decomposition");
-}
-
-Expected<void> check_options(const RenderOptions& options) {
-  if (options.width < 1 || options.height < 1 || options.width > soft::kMaxViewport ||
-      options.height > soft::kMaxViewport)
-    return make_error("image size " + std::to_string(options.width) + "x" +
-                      std::to_string(options.height) + " is outside 1x1 .. " +
-                      std::to_string(soft::kMaxViewport) + "x" +
-                      std::to_string(soft::kMaxViewport));
-  return {};
+void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, SurfaceLayer& out) {
+  FrameStats& stats = in.frame.stats;
+  const bool cpu = backend_->counts_cpu_volumes();
+  timed(*backend_, stats.ms_volumes, [&] {
+    const bool built = cpu || in.options.show_volumes;
+    backend_->volumes_ready(l, built ? volumes_.update(in.scene, plan_, l, stats) : none_rebuilt_);
+  });
+  auto count = [&](std::size_t o) {
+    if (cpu) stats.volume_primitives += volumes_.volume(l, o).primitive_count();
+    backend_->count_volume(l, o);
+  };
+  // The opaque casters' counts: the shadow mask.
+  timed(*backend_, stats.ms_counts, [&] {
+    backend_->begin_mask(l);
+    for (std::size_t o = 0; o < plan_.objects.size(); ++o)
+      if (!plan_.transparent(o)) count(o);
+    backend_->end_counts();
+  });
+  if (in.read_back) timed(*backend_, stats.ms_readback, [&] { backend_->read_mask(l, out); });
+  // The transparent casters' light intensity map (Kim et al. Eq. 3), a group of one material at
+  // a time: each count adds the group's log transmittance.
+  if (plan_.has_glass()) {
+    timed(*backend_, stats.ms_counts, [&] {
+      backend_->begin_light_map(l);
+      for (std::size_t g = 0; g < plan_.glass.size(); ++g) {
+        for (const std::size_t o : plan_.glass[g].members) count(o);
+        backend_->end_group(g);
+      }
+      backend_->end_counts();
+    });
+    if (in.read_back)
+      timed(*backend_, stats.ms_readback, [&] { backend_->read_light_map(l, out); });
+  }
+  timed(*backend_, stats.ms_shade, [&] { backend_->light_pass(l, layer); });
 }
 
 }  // namespace shadowvol

@@ -11,7 +11,7 @@
 
 #include "core/names.h"
 #include "core/projection.h"
-#include "scene/shapes.h"
+#include "core/shapes.h"
 
 namespace shadowvol {
 

@@ -11,7 +11,7 @@
 
 #include "core/volume.h"
 #include "scene/mesh_io.h"
-#include "scene/shapes.h"
+#include "core/shapes.h"
 
 namespace shadowvol {
 namespace {

@@ -21,9 +21,17 @@
 
 #include <glm/vec4.hpp>
 
-#include "soft/raster.h"
+#include "raster/raster.h"
 
 namespace shadowvol::soft {
+
+// The rasterizer this backend is built on.
+using raster::Counters;
+using raster::CountRule;
+using raster::DepthBounds;
+using raster::kTileSize;
+using raster::Target;
+using raster::TileDepth;
 
 // One sampled tile in every 4 x 4 (a 32 x 32 pixel block): at 1024 x 768, 768 samples. Finer
 // sampling chooses a little better and costs more than it saves (README, issue 6).

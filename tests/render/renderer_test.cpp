@@ -10,11 +10,12 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/shapes.h"
 #include "render/frame_plan.h"
 #include "render/heatmap.h"
-#include "render/soft_renderer.h"
+#include "render/shading.h"
 #include "scene/scene.h"
-#include "scene/shapes.h"
+#include "soft/soft_backend.h"
 
 namespace shadowvol {
 namespace {
@@ -26,7 +27,7 @@ TEST(Renderer, FrameDoesNotDependOnTheThreadCount) {
   std::vector<Frame> frames;
   for (int threads : {1, 2, 4}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    SoftRenderer renderer;
+    Renderer renderer = soft::soft_renderer();
     frames.push_back(renderer.render(*scene, options));
   }
   for (std::size_t i = 1; i < frames.size(); ++i) {
@@ -47,20 +48,20 @@ TEST(Renderer, SampledSplitPlanesCountTheirSamplesApart) {
   auto scene = builtin_scene("knight");
   ASSERT_TRUE(scene.ok());
   RenderOptions options{256, 192, Method::split_plane, Generator::automatic};
-  SoftRenderer renderer;
+  Renderer renderer = soft::soft_renderer();
   const FrameStats sampled = renderer.render(*scene, options).stats;
   EXPECT_GT(sampled.split_sampling.pixels_processed, 0u);
   EXPECT_GT(sampled.split_sampling.triangles_in, 0u);
   FrameStats stats;
   const FramePlan plan = plan_frame(*scene, options, stats);
   for (std::size_t o = 0; o < scene->objects.size(); ++o) {
-    ASSERT_FALSE(plan.split[0][o].empty());
-    for (const FramePlan::PartSplit& part : plan.split[0][o])
+    ASSERT_FALSE(plan.volume(0, o).split.empty());
+    for (const PartSplit& part : plan.volume(0, o).split)
       EXPECT_GE(part.candidates.size(), 2u);  // at least both whole-volume rules
   }
   options.split_planes = SplitPlanes::laine;
   EXPECT_EQ(renderer.render(*scene, options).stats.split_sampling.triangles_in, 0u);
-  EXPECT_TRUE(plan_frame(*scene, options, stats).split[0][0][0].candidates.empty());
+  EXPECT_TRUE(plan_frame(*scene, options, stats).volume(0, 0).split[0].candidates.empty());
   options.split_planes = SplitPlanes::sampled;
   for (SceneObject& object : scene->objects)
     object.split_plane = SplitPlaneChoice::point_camera_light;
@@ -78,13 +79,13 @@ TEST(Renderer, EachPartOfACasterGetsItsOwnSplitPlane) {
   RenderOptions options{256, 192, Method::split_plane, Generator::automatic};
   FrameStats stats;
   const FramePlan each = plan_frame(*scene, options, stats);
-  EXPECT_EQ(each.split[0][0].size(), 1u);  // the ground
-  EXPECT_EQ(each.split[0][1].size(), 12u);
-  EXPECT_TRUE(each.splits_by_part(0, 1));
+  EXPECT_EQ(each.volume(0, 0).split.size(), 1u);  // the ground
+  EXPECT_EQ(each.volume(0, 1).split.size(), 12u);
+  EXPECT_TRUE(each.volume(0, 1).by_part());
   options.split_parts = SplitParts::whole;
   const FramePlan whole = plan_frame(*scene, options, stats);
-  EXPECT_EQ(whole.split[0][1].size(), 1u);
-  EXPECT_FALSE(whole.splits_by_part(0, 1));
+  EXPECT_EQ(whole.volume(0, 1).split.size(), 1u);
+  EXPECT_FALSE(whole.volume(0, 1).by_part());
 
   Mesh many;  // kMaxSplitParts + 1 separate triangles
   for (std::size_t i = 0; i <= kMaxSplitParts; ++i) {
@@ -95,7 +96,7 @@ TEST(Renderer, EachPartOfACasterGetsItsOwnSplitPlane) {
   }
   scene->objects[1] = make_object("many", many, glm::mat4(1.0f), glm::vec3(0.8f));
   options.split_parts = SplitParts::each;
-  EXPECT_EQ(plan_frame(*scene, options, stats).split[0][1].size(), 1u);
+  EXPECT_EQ(plan_frame(*scene, options, stats).volume(0, 1).split.size(), 1u);
   EXPECT_EQ(parse_split_parts("whole").value(), SplitParts::whole);
   EXPECT_EQ(parse_split_parts("all").error().message,
             "unknown split-plane decomposition 'all': expected each or whole");
@@ -108,13 +109,13 @@ TEST(Renderer, TileWorkAddsUpToTheCountersAndTheHeatmapShowsIt) {
   for (Method method : {Method::zpass, Method::zfail, Method::split_plane, Method::zpass_prefill}) {
     SCOPED_TRACE(std::string(to_string(method)));
     RenderOptions options{203, 117, method, Generator::automatic};  // partial edge tiles
-    SoftRenderer renderer;
+    Renderer renderer = soft::soft_renderer();
     EXPECT_TRUE(renderer.render(*scene, options).tile_work.empty());  // not asked for
     options.tile_work = true;
     const Frame frame = renderer.render(*scene, options);
     ASSERT_EQ(frame.tile_work.size(), std::size_t{26 * 15});
     std::uint64_t processed = 0, updated = 0;
-    for (const soft::TileWork& t : frame.tile_work) {
+    for (const raster::TileWork& t : frame.tile_work) {
       processed += t.pixels_processed;
       updated += t.pixels_updated;
       EXPECT_LE(t.pixels_updated, t.pixels_processed);
@@ -159,14 +160,14 @@ TEST(Renderer, SplitPlanesRunAlongLongThinObjects) {
   // back in eye-relative space: planes map by the transpose).
   const auto side = [](const FramePlan& plan, const glm::vec4& p) {
     const glm::dvec4 plane =
-        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.split[0][0][0].plane);
-    const glm::dvec4 x = glm::dmat4(plan.model[0]) * glm::dvec4(p);
+        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.volume(0, 0).split[0].plane);
+    const glm::dvec4 x = glm::dmat4(plan.objects[0].model) * glm::dvec4(p);
     return std::abs(glm::dot(plane, x)) / glm::length(glm::dvec3(plane));
   };
   FrameStats stats;
   const glm::vec4 end1(0, -1.5f, 0, 1), end2(0, 1.5f, 0, 1), centre(0, 0, 0, 1);
   const FramePlan ppl = plan_frame(scene, options, stats);
-  ASSERT_EQ(ppl.split[0][0].size(), 1u);
+  ASSERT_EQ(ppl.volume(0, 0).split.size(), 1u);
   EXPECT_LT(side(ppl, end1), 1e-4);
   EXPECT_LT(side(ppl, end2), 1e-4);
   scene.objects[0].split_plane = SplitPlaneChoice::point_camera_light;
@@ -196,11 +197,11 @@ TEST(Renderer, PointCameraLightRunsThroughTheObjectsCentroid) {
   RenderOptions options{320, 200, Method::split_plane, Generator::automatic};
   options.split_parts = SplitParts::whole;  // box and ball are two parts: one plane for both
   const FramePlan plan = plan_frame(scene, options, stats);
-  ASSERT_EQ(plan.split[0][0].size(), 1u);
+  ASSERT_EQ(plan.volume(0, 0).split.size(), 1u);
   const glm::dvec4 plane =
-      glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.split[0][0][0].plane);
+      glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.volume(0, 0).split[0].plane);
   const auto distance = [&](const glm::dvec3& object_point) {  // world units
-    const glm::dvec4 x = glm::dmat4(plan.model[0]) * glm::dvec4(object_point, 1.0);
+    const glm::dvec4 x = glm::dmat4(plan.objects[0].model) * glm::dvec4(object_point, 1.0);
     return std::abs(glm::dot(plane, x)) / glm::length(glm::dvec3(plane));
   };
   const Topology& topology = *scene.objects[0].topology;
@@ -225,11 +226,11 @@ TEST(Renderer, FlatCastersGetTheirOwnPlaneAndRodsStayPointPointLight) {
   FrameStats stats;
   const auto world_plane = [](const FramePlan& plan) {  // eye-relative, unit normal
     glm::dvec4 plane =
-        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.split[0][0][0].plane);
+        glm::transpose(glm::dmat4(plan.view_proj)) * glm::dvec4(plan.volume(0, 0).split[0].plane);
     return plane / glm::length(glm::dvec3(plane));
   };
   const FramePlan flat = plan_frame(scene, options, stats);
-  ASSERT_EQ(flat.split[0][0].size(), 1u);
+  ASSERT_EQ(flat.volume(0, 0).split.size(), 1u);
   const glm::dvec4 plane = world_plane(flat);
   EXPECT_NEAR(std::abs(plane.y), 1.0, 1e-6);  // the floor's own orientation
   const auto at = [&](const glm::vec3& world) {
@@ -246,7 +247,7 @@ TEST(Renderer, FlatCastersGetTheirOwnPlaneAndRodsStayPointPointLight) {
   scene.objects[0] = make_object("rod", make_box({-5.0f, -0.005f, -0.005f}, {5.0f, 0.005f, 0.005f}),
                                  lift, glm::vec3(0.8f));
   const FramePlan rod = plan_frame(scene, options, stats);
-  ASSERT_EQ(rod.split[0][0].size(), 1u);
+  ASSERT_EQ(rod.volume(0, 0).split.size(), 1u);
   const glm::dvec4 rod_plane = world_plane(rod);
   const auto rod_at = [&](const glm::vec3& world) {
     return glm::dot(rod_plane,
@@ -272,11 +273,11 @@ TEST(FramePlan, DepthBoundsHoldEveryVisiblePointOfTheVolume) {
       std::size_t inside = 0;
       for (std::size_t l = 0; l < scene->lights.size(); ++l)
         for (std::size_t o = 0; o < scene->objects.size(); ++o) {
-          const soft::DepthBounds b = plan.depth_bounds[l][o];
+          const raster::DepthBounds b = plan.volume(l, o).depth_bounds;
           const glm::vec4 light = plan.lights[l];
-          const glm::vec4 far = plan.far_plane[l][o];
+          const glm::vec4 far = plan.volume(l, o).far_plane;
           for (const glm::vec3& p : scene->objects[o].mesh->positions) {
-            const glm::vec3 q = glm::vec3(plan.model[o] * glm::vec4(p, 1.0f));
+            const glm::vec3 q = glm::vec3(plan.objects[o].model * glm::vec4(p, 1.0f));
             const glm::vec3 away =
                 light.w != 0.0f ? q - glm::vec3(light) / light.w : -glm::vec3(light);
             for (float t = 0.0f; t <= 64.0f; t = t * 1.5f + 0.05f) {
@@ -299,7 +300,7 @@ TEST(FramePlan, DepthBoundsHoldEveryVisiblePointOfTheVolume) {
   ASSERT_TRUE(shadowed_eye.ok());
   FrameStats stats;
   const FramePlan plan = plan_frame(*shadowed_eye, {320, 180}, stats);
-  EXPECT_EQ(plan.depth_bounds[0][1].zmax, 1.0f);  // objects[1]: the slab
+  EXPECT_EQ(plan.volume(0, 1).depth_bounds.zmax, 1.0f);  // objects[1]: the slab
   // A box behind the camera, lit from behind it too: its volume runs away out of view.
   Scene behind;
   behind.objects.push_back(make_object("box", make_box(glm::vec3(-0.5f), glm::vec3(0.5f)),
@@ -307,7 +308,7 @@ TEST(FramePlan, DepthBoundsHoldEveryVisiblePointOfTheVolume) {
                                        glm::vec3(0.8f)));
   behind.lights.push_back({{0.0f, 2.0f, 6.0f, 1.0f}});
   const FramePlan away = plan_frame(behind, {320, 180}, stats);
-  EXPECT_GT(away.depth_bounds[0][0].zmin, away.depth_bounds[0][0].zmax);
+  EXPECT_GT(away.volume(0, 0).depth_bounds.zmin, away.volume(0, 0).depth_bounds.zmax);
 }
 
 // The 8-bit sRGB encoding by table search gives exactly the rounded formula: on every float
@@ -339,7 +340,7 @@ TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
   auto scene = builtin_scene("demo");
   ASSERT_TRUE(scene.ok());
   const RenderOptions options{160, 90, Method::automatic, Generator::automatic};
-  SoftRenderer renderer;
+  Renderer renderer = soft::soft_renderer();
   const Frame first = renderer.render(*scene, options);
   EXPECT_EQ(first.stats.volumes_built, 4);
   EXPECT_EQ(first.stats.volumes_reused, 0);
@@ -352,7 +353,7 @@ TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
   const Frame third = renderer.render(*scene, options);
   EXPECT_EQ(third.stats.volumes_built, 1);
   EXPECT_EQ(third.stats.volumes_reused, 3);
-  SoftRenderer fresh;
+  Renderer fresh = soft::soft_renderer();
   EXPECT_EQ(third.image.rgba, fresh.render(*scene, options).image.rgba);
   EXPECT_NE(third.image.rgba, first.image.rgba);
   // Moving the light rebuilds them all.

@@ -5,7 +5,7 @@
 
 #include "core/topology.h"
 #include "render/volume_builder.h"
-#include "scene/shapes.h"
+#include "core/shapes.h"
 #include "test_meshes.h"
 
 namespace shadowvol {

@@ -7,7 +7,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
-#include "soft/raster.h"
+#include "raster/raster.h"
 
 namespace shadowvol::soft {
 namespace {

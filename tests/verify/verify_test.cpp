@@ -12,13 +12,13 @@
 
 #include <glm/ext/matrix_transform.hpp>
 
-#include "gl/backend.h"
-#include "render/frame_plan.h"
+#include "backend/backend.h"
+#include "render/shading.h"
 #include "render/light_map.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
-#include "scene/shapes.h"
+#include "core/shapes.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
 
@@ -54,7 +54,7 @@ Frame render(const Variant& variant, const Scene& scene, const RenderOptions& op
   auto made = make_renderer(variant.backend, variant.gl);
   EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
   if (!made) return {};
-  EXPECT_EQ(made->renderer->backend(), variant.backend == Backend::soft ? "soft" : "gl");
+  EXPECT_EQ(made->renderer->backend_name(), variant.backend == Backend::soft ? "soft" : "gl");
   return made->renderer->render(scene, options);
 }
 

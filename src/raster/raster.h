@@ -1,4 +1,4 @@
-// shadowvol soft: the software rasterizer's triangle stage (setup -> raster), its buffers and
+// shadowvol raster: the software rasterizer's triangle stage (setup -> raster), its buffers and
 // counters. Depends on glm and oneTBB only; knows nothing of meshes, scenes or shadow volumes.
 //
 // Owns: clipping in homogeneous space, snapping to a fixed-point grid, exact edge functions
@@ -32,7 +32,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-namespace shadowvol::soft {
+namespace shadowvol::raster {
 
 // 1/256 pixel: edge functions are products of two coordinate differences, each below
 // 2^(15 + 8 + 1) = 2^24 subpixels within the guard band, so they fit in 64-bit integers exactly.
@@ -168,4 +168,4 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
                  DepthBounds bounds = {}, const SplitPlane& split = {});
 
-}  // namespace shadowvol::soft
+}  // namespace shadowvol::raster

@@ -1,4 +1,4 @@
-// shadowvol gl: choosing a backend by name, the one place that knows both.
+// shadowvol backend: choosing a backend by name, the one place that knows both.
 //
 // Owns: "soft", "gl" and "auto" (gl where an OpenGL 4.5 context can be made, else soft, and a
 // line saying which and why), and making the renderer, headless.
@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "core/expected.h"
-#include "gl/gl_renderer.h"
+#include "gl/gl_backend.h"
 #include "render/renderer.h"
 
 namespace shadowvol {

@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/topology.h"
-#include "scene/shapes.h"
+#include "core/shapes.h"
 
 namespace shadowvol {
 namespace {

@@ -1,12 +1,13 @@
-// shadowvol gl: GlRenderer, the OpenGL 4.5 backend behind the same interface as the software one.
+// shadowvol gl: GlBackend, the frame pipeline's verbs in OpenGL 4.5.
 //
 // Owns: the GPU passes of a frame and the GPU copies of meshes and volumes. Per frame: a depth
 // pass that writes face ids and the ambient term; per light, the volumes drawn into the
 // stencil buffer (two-sided, wrapping increment and decrement: weights +-1) or into an R32F
 // target with additive blending (any integer weight, exact below 2^24), then the scene again,
-// added where the count is 0; finally the colour to sRGB. Decisions (matrices, z-pass or z-fail
-// per object, CPU volumes and their cache, shading constants) come from render/frame_plan.h, so
-// both backends draw the same volumes by the same method.
+// added where the count is 0; finally the colour to sRGB. What to draw (matrices, z-pass or z-fail
+// per object, CPU volumes and their cache) comes from the pipeline (render/renderer.h) and its
+// plan, and the shading constants from render/shading.h, so both backends draw the same volumes
+// by the same method.
 //
 // Volumes come from the CPU (core's VolumeBuffer, uploaded when the cache rebuilds it) or from
 // a geometry shader over GL_TRIANGLES_ADJACENCY (GPU Gems 3 §11.3.2), which builds the
@@ -26,8 +27,8 @@
 #include "core/expected.h"
 #include "gl/context.h"
 #include "gl/objects.h"
+#include "render/frame_backend.h"
 #include "render/frame_plan.h"
-#include "render/renderer.h"
 
 namespace shadowvol::gl {
 
@@ -55,20 +56,38 @@ struct GlSettings {
 // generator (a shader emits weight +-1 per face: the robust form of the same count).
 Expected<void> check_settings(const GlSettings& settings, Generator generator);
 
-class GlRenderer final : public Renderer {
+class GlBackend final : public FrameBackend {
  public:
   // Compiles the shaders on the current context. `context`, if given, is owned (and outlives
-  // every GL object of the renderer).
-  static Expected<std::unique_ptr<GlRenderer>> create(GlSettings settings,
-                                                      std::optional<Context> context = {});
-  ~GlRenderer() override;
+  // every GL object of the backend).
+  static Expected<std::unique_ptr<GlBackend>> create(GlSettings settings,
+                                                     std::optional<Context> context = {});
+  ~GlBackend() override;
 
-  Frame render(const Scene& scene, const RenderOptions& options) override;
-  std::string_view backend() const override { return "gl"; }
+  std::string_view name() const override { return "gl"; }
+  // Refuses the methods and records only the software rasterizer has, and check_settings'.
+  Expected<void> supports(const RenderOptions& options) const override;
+  bool counts_cpu_volumes() const override { return settings_.volumes == VolumePath::cpu; }
+  bool can_present() const override { return true; }
+  void finish() override;
 
-  // Draws the frame and copies it to the context's default framebuffer (the window), with
-  // no read-back: Frame::image and the masks stay empty; stats are filled.
-  FrameStats present(const Scene& scene, const RenderOptions& options);
+  void begin_frame(const FrameInputs& inputs) override;
+  void depth_pass(Layer layer) override;
+  void read_ids(Layer layer, SurfaceLayer& out) override;
+  void volumes_ready(std::size_t light, const std::vector<std::uint8_t>& rebuilt) override;
+  void begin_mask(std::size_t light) override;
+  void begin_light_map(std::size_t light) override;
+  void count_volume(std::size_t light, std::size_t object) override;
+  void end_group(std::size_t) override {}  // each count adds its group's log transmittance
+  void end_counts() override;
+  void read_mask(std::size_t light, SurfaceLayer& layer) override;
+  void read_light_map(std::size_t light, SurfaceLayer& layer) override;
+  void light_pass(std::size_t light, Layer layer) override;
+  void see_through() override;
+  void shade() override;
+  void read_image(Image& image) override;
+  // Copies the last frame to the context's default framebuffer (the window).
+  void present() override;
 
   const GlSettings& settings() const { return settings_; }
   void set_settings(const GlSettings& settings) { settings_ = settings; }
@@ -78,18 +97,14 @@ class GlRenderer final : public Renderer {
   struct MeshBuffers;
   struct VolumeUpload;
   struct Targets;
-  struct Pass;
-  GlRenderer() = default;
-  Frame draw(const Scene& scene, const RenderOptions& options, bool read_back);
-  // Draws the scene's opaque objects, or its transparent ones when `glass`, with the bound
-  // program: sets each one's mvp, lets per_object(o) set the rest of its uniforms.
+  GlBackend() = default;
+  // Draws the layer's objects with the bound program: sets each one's mvp, lets per_object(o)
+  // set the rest of its uniforms.
   template <class PerObject>
-  void draw_surfaces(const Pass& pass, bool glass, PerObject&& per_object);
-  // The ids of the depth pass into the layer's object and face (those of its kind only).
-  void read_ids(const Pass& pass, bool glass, SurfaceLayer& layer);
-  // Per light: the opaque casters' counts (the mask), the transparent casters' log light map,
-  // and the lit pass of the layer's surfaces, against the depth buffer as it stands.
-  void light_layer(const Pass& pass, std::size_t light, bool glass_layer, SurfaceLayer& layer);
+  void draw_surfaces(Layer layer, PerObject&& per_object);
+  // Draws the volume of object o for the light into the bound target, additively or into the
+  // stencil.
+  void draw_volume(std::size_t light, std::size_t o, bool additive);
   MeshBuffers& mesh_buffers(const SceneObject& object);
 
   std::optional<Context> context_;  // first member: destroyed last
@@ -104,7 +119,14 @@ class GlRenderer final : public Renderer {
   std::unique_ptr<Targets> targets_;
   std::unordered_map<const Topology*, std::unique_ptr<MeshBuffers>> meshes_;
   std::vector<std::vector<std::unique_ptr<VolumeUpload>>> uploads_;  // [light][object]
-  VolumeCache volumes_;
+
+  // The frame being drawn.
+  const FrameInputs* in_ = nullptr;
+  std::vector<MeshBuffers*> frame_meshes_;  // per object
+  bool cpu_ = true;              // volumes built on the CPU (else in the geometry shader)
+  bool unit_weights_ = true;     // every opaque caster's CPU volume of the light has weights +-1
+  bool mask_additive_ = false;   // the light's mask counts into the R32F target, not the stencil
+  bool into_light_map_ = false;  // count_volume adds into the light map
 };
 
 }  // namespace shadowvol::gl

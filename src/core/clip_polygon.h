@@ -1,4 +1,4 @@
-// shadowvol soft: clipping a convex polygon against one plane (Sutherland and Hodgman 1974), in
+// shadowvol core: clipping a convex polygon against one plane (Sutherland and Hodgman 1974), in
 // homogeneous or affine coordinates, for the rasterizer's clipper and for anything that must
 // cut geometry the way it does.
 #pragma once
@@ -7,7 +7,7 @@
 #include <cassert>
 #include <cstddef>
 
-namespace shadowvol::soft {
+namespace shadowvol {
 
 // Keeps the part of the convex polygon v[0 .. n) where distance(vertex) >= 0 (NaN counts as
 // outside) and returns whether anything was cut. Each new vertex is computed from its edge's
@@ -42,4 +42,4 @@ bool clip_polygon(std::array<Vertex, N>& v, int& n, Distance&& distance) {
   return true;
 }
 
-}  // namespace shadowvol::soft
+}  // namespace shadowvol

@@ -1,6 +1,6 @@
 // The software rasterizer's triangle stage: clip -> setup -> raster, per 8 x 8 tile.
 // Stages named as llvmpipe names them; every constant says where it comes from (raster.h).
-#include "soft/raster.h"
+#include "raster/raster.h"
 
 // The tile-row vectors below are passed between functions of this file only, all inlined; GCC's
 // note that a 32-byte vector argument's ABI differs with and without AVX concerns no caller.
@@ -15,13 +15,13 @@
 
 #include <tbb/parallel_for.h>
 
-#include "soft/clip_polygon.h"
+#include "core/clip_polygon.h"
 
 #ifdef __AVX__
 #include <immintrin.h>
 #endif
 
-namespace shadowvol::soft {
+namespace shadowvol::raster {
 
 Counters& Counters::operator+=(const Counters& other) {
   triangles_in += other.triangles_in;
@@ -669,4 +669,4 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   counters.count_updates += counters.pixels_passed - passed_before;  // every pass writes
 }
 
-}  // namespace shadowvol::soft
+}  // namespace shadowvol::raster

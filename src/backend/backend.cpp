@@ -1,7 +1,7 @@
-#include "gl/backend.h"
+#include "backend/backend.h"
 
 #include "core/names.h"
-#include "render/soft_renderer.h"
+#include "soft/soft_backend.h"
 
 namespace shadowvol {
 
@@ -26,9 +26,9 @@ namespace {
 Expected<std::unique_ptr<Renderer>> make_gl(const gl::GlSettings& settings) {
   auto context = gl::Context::create_headless();
   if (!context) return make_error("cannot create an OpenGL context: " + context.error().message);
-  auto renderer = gl::GlRenderer::create(settings, std::move(*context));
-  if (!renderer) return renderer.error();
-  return std::unique_ptr<Renderer>(std::move(*renderer));
+  auto backend = gl::GlBackend::create(settings, std::move(*context));
+  if (!backend) return backend.error();
+  return std::make_unique<Renderer>(std::move(*backend));
 }
 
 }  // namespace
@@ -37,17 +37,18 @@ Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_s
   if (backend == Backend::soft) {
     if (gl_settings.volumes == gl::VolumePath::gpu)
       return make_error("geometry-shader volumes (--volumes gpu) need the gl backend");
-    return MadeRenderer{std::make_unique<SoftRenderer>(), ""};
+    return MadeRenderer{std::make_unique<Renderer>(std::make_unique<soft::SoftBackend>()), ""};
   }
   auto gl = make_gl(gl_settings);
   if (gl) {
-    std::string note = backend == Backend::automatic ? "backend auto: gl (an OpenGL 4.5 context was made)" : "";
+    std::string note =
+        backend == Backend::automatic ? "backend auto: gl (an OpenGL 4.5 context was made)" : "";
     return MadeRenderer{std::move(*gl), note};
   }
   if (backend == Backend::gl) return gl.error();
   if (gl_settings.volumes == gl::VolumePath::gpu)
     return make_error("--volumes gpu needs the gl backend, and " + gl.error().message);
-  return MadeRenderer{std::make_unique<SoftRenderer>(),
+  return MadeRenderer{std::make_unique<Renderer>(std::make_unique<soft::SoftBackend>()),
                       "backend auto: soft, since " + gl.error().message};
 }
 

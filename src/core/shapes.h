@@ -1,4 +1,4 @@
-// shadowvol scene: procedural shapes, so that tests, benchmarks and built-in scenes need no files.
+// shadowvol core: procedural shapes, so that tests, benchmarks and built-in scenes need no files.
 //
 // Owns: meshes generated from a few parameters, deterministic for the same parameters.
 #pragma once

@@ -11,9 +11,9 @@
 #include <glm/geometric.hpp>
 
 #include "core/projection.h"
-#include "soft/raster.h"
+#include "raster/raster.h"
 
-namespace shadowvol::soft {
+namespace shadowvol::raster {
 namespace {
 
 // A triangle list in clip space straight from NDC x, y (depth z = 0.5, w = 1).
@@ -442,4 +442,4 @@ TEST(Raster, TheSplitTestTakesTheMiddleOfTheTilesDepths) {
 }
 
 }  // namespace
-}  // namespace shadowvol::soft
+}  // namespace shadowvol::raster

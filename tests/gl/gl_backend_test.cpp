@@ -2,22 +2,24 @@
 // OpenGL error behind. (Its shadows are verified against the reference in verify_test.cpp.)
 #include <gtest/gtest.h>
 
-#include "gl/backend.h"
+#include "backend/backend.h"
 #include "gl/objects.h"
 #include "scene/scene.h"
 
 namespace shadowvol::gl {
 namespace {
 
-std::unique_ptr<GlRenderer> make(GlSettings settings) {
+std::unique_ptr<Renderer> make(GlSettings settings) {
   auto context = Context::create_headless();
   EXPECT_TRUE(context.ok()) << context.error().message;
-  auto renderer = GlRenderer::create(settings, std::move(*context));
-  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
-  return renderer ? std::move(*renderer) : nullptr;
+  auto backend = GlBackend::create(settings, std::move(*context));
+  EXPECT_TRUE(backend.ok()) << backend.error().message;
+  return backend ? std::make_unique<Renderer>(std::move(*backend)) : nullptr;
 }
 
-TEST(GlRenderer, ReusesUploadedVolumesAndLeavesNoGlError) {
+GlBackend& gl_of(Renderer& renderer) { return static_cast<GlBackend&>(renderer.backend()); }
+
+TEST(GlBackend, ReusesUploadedVolumesAndLeavesNoGlError) {
   auto scene = builtin_scene("demo");
   ASSERT_TRUE(scene.ok());
   auto renderer = make({});
@@ -42,28 +44,31 @@ TEST(GlRenderer, ReusesUploadedVolumesAndLeavesNoGlError) {
   EXPECT_EQ(fresh->render(*scene, options).shadowed, third.shadowed);
 }
 
-TEST(GlRenderer, SwitchingVolumePathsKeepsTheShadows) {
+TEST(GlBackend, SwitchingVolumePathsKeepsTheShadows) {
   auto scene = builtin_scene("nonmanifold");
   ASSERT_TRUE(scene.ok());
   auto renderer = make({VolumePath::cpu, CountTarget::automatic});
   ASSERT_TRUE(renderer);
   const RenderOptions options{160, 90, Method::zfail, Generator::robust};
   const Frame cpu = renderer->render(*scene, options);
-  renderer->set_settings({VolumePath::gpu, CountTarget::stencil});
+  gl_of(*renderer).set_settings({VolumePath::gpu, CountTarget::stencil});
   const Frame gpu = renderer->render(*scene, options);
-  renderer->set_settings({VolumePath::cpu, CountTarget::additive});
+  gl_of(*renderer).set_settings({VolumePath::cpu, CountTarget::additive});
   const Frame back = renderer->render(*scene, options);
   EXPECT_EQ(take_error(), "");
   EXPECT_EQ(back.shadowed, cpu.shadowed);
   std::size_t differ = 0;
-  for (std::size_t p = 0; p < cpu.shadowed[0].size(); ++p) differ += cpu.shadowed[0][p] != gpu.shadowed[0][p];
+  for (std::size_t p = 0; p < cpu.shadowed[0].size(); ++p)
+    differ += cpu.shadowed[0][p] != gpu.shadowed[0][p];
   EXPECT_LT(differ, cpu.shadowed[0].size() / 200);  // facing rounds differently on the GPU
 }
 
-TEST(GlRenderer, SettingsAreParsedAndCheckedWithClearMessages) {
-  EXPECT_FALSE(check_settings({VolumePath::gpu, CountTarget::automatic}, Generator::multiplicity).ok());
+TEST(GlBackend, SettingsAreParsedAndCheckedWithClearMessages) {
+  EXPECT_FALSE(
+      check_settings({VolumePath::gpu, CountTarget::automatic}, Generator::multiplicity).ok());
   EXPECT_TRUE(check_settings({VolumePath::gpu, CountTarget::automatic}, Generator::robust).ok());
-  EXPECT_TRUE(check_settings({VolumePath::cpu, CountTarget::stencil}, Generator::multiplicity).ok());
+  EXPECT_TRUE(
+      check_settings({VolumePath::cpu, CountTarget::stencil}, Generator::multiplicity).ok());
   EXPECT_EQ(parse_volume_path("gpu").value(), VolumePath::gpu);
   EXPECT_EQ(parse_count_target("additive").value(), CountTarget::additive);
   EXPECT_EQ(parse_backend("auto").value(), Backend::automatic);

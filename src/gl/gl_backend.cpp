@@ -1,0 +1,793 @@
+#include "gl/gl_backend.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include <glm/exponential.hpp>
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/names.h"
+#include "gl/shaders.h"
+#include "render/shading.h"
+
+namespace shadowvol::gl {
+namespace {
+
+// One vertex of an uploaded CPU volume: the position (w = 0 at infinity) and its triangle's
+// weight.
+struct VolumeVertex {
+  glm::vec4 position;
+  std::int32_t weight;
+};
+
+// Copies a bottom-up OpenGL read-back into top-down rows, converting each element.
+template <class In, class Out, class Convert>
+void flip_rows(const std::vector<In>& in, int w, int h, std::vector<Out>& out, Convert convert) {
+  out.resize(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y) {
+    const In* src = &in[static_cast<std::size_t>(h - 1 - y) * w];
+    Out* dst = &out[static_cast<std::size_t>(y) * w];
+    for (int x = 0; x < w; ++x) dst[x] = convert(src[x]);
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(VolumePath path) { return path == VolumePath::cpu ? "cpu" : "gpu"; }
+
+Expected<VolumePath> parse_volume_path(std::string_view name) {
+  return parse_name(name, {VolumePath::cpu, VolumePath::gpu}, "volume path");
+}
+
+std::string_view to_string(CountTarget target) {
+  switch (target) {
+    case CountTarget::automatic:
+      return "auto";
+    case CountTarget::stencil:
+      return "stencil";
+    case CountTarget::additive:
+      return "additive";
+  }
+  return "unknown";
+}
+
+Expected<CountTarget> parse_count_target(std::string_view name) {
+  return parse_name(name, {CountTarget::stencil, CountTarget::additive, CountTarget::automatic},
+                    "count target");
+}
+
+Expected<void> check_settings(const GlSettings& settings, Generator generator) {
+  if (settings.volumes == VolumePath::gpu && generator == Generator::multiplicity)
+    return make_error(
+        "the geometry shader builds standard or robust volumes (one +-1 side per face and "
+        "edge); use --generator robust, standard or auto with --volumes gpu, or --volumes cpu "
+        "for multiplicity");
+  return {};
+}
+
+// The GPU copy of one mesh: what the depth and lit passes draw, and (built on first use) the
+// triangles-with-adjacency input of the volume geometry shader.
+struct GlBackend::MeshBuffers {
+  std::shared_ptr<const Mesh> mesh;
+  std::shared_ptr<const Topology> topology;
+  Object positions = make_buffer(), indices = make_buffer(), normals = make_buffer();
+  Object vao = make_vertex_array();
+  GLsizei index_count = 0;
+  Object adjacency_positions, adjacency_indices, adjacency_vao;
+  GLsizei adjacency_index_count = 0;
+  bool used = false;
+
+  void build_adjacency();
+};
+
+// Six indices per face: its vertices at 0, 2, 4 and, at 1, 3, 5, the far vertex of the face
+// across edges 0-1, 1-2, 2-0. Edges that are not a consistent manifold pair (open,
+// non-manifold, inconsistently wound: Topology's irregular and boundary edges) point at an
+// extra vertex with w = 0, "no neighbour", as in GPU Gems 3 §11.3.2.
+void GlBackend::MeshBuffers::build_adjacency() {
+  const Topology& topo = *topology;
+  const std::size_t faces = topo.face_count();
+  const auto none = static_cast<std::uint32_t>(topo.positions.size());
+  std::vector<glm::vec4> points;
+  points.reserve(topo.positions.size() + 1);
+  for (const glm::vec3& p : topo.positions) points.emplace_back(p, 1.0f);
+  points.emplace_back(0.0f);
+  std::vector<std::uint32_t> adjacency(6 * faces, none);
+  const std::uint32_t* fv = topo.face_vertices.data();
+  for (std::size_t f = 0; f < faces; ++f)
+    for (int k = 0; k < 3; ++k) adjacency[6 * f + 2 * k] = fv[3 * f + k];
+  // The far vertex of face g across edge a-b, and the slot of edge a->b in face f.
+  auto far_vertex = [&](std::size_t g, std::uint32_t a, std::uint32_t b) {
+    for (int k = 0; k < 3; ++k)
+      if (fv[3 * g + k] != a && fv[3 * g + k] != b) return fv[3 * g + k];
+    return none;
+  };
+  auto slot = [&](std::size_t f, std::uint32_t a, std::uint32_t b) {
+    for (int k = 0; k < 3; ++k)
+      if (fv[3 * f + k] == a && fv[3 * f + (k + 1) % 3] == b) return k;
+    return -1;
+  };
+  for (std::size_t e = 0; e < topo.regular_edge_count(); ++e) {
+    const auto [f0, f1] = topo.edge_faces[e];
+    if (f1 == faces) continue;  // boundary edge
+    const auto [u, v] = topo.edge_vertices[e];
+    const int s0 = slot(f0, u, v), s1 = slot(f1, v, u);
+    if (s0 < 0 || s1 < 0) continue;  // a collapsed face: keep "no neighbour"
+    adjacency[6 * f0 + 2 * s0 + 1] = far_vertex(f1, u, v);
+    adjacency[6 * f1 + 2 * s1 + 1] = far_vertex(f0, u, v);
+  }
+  adjacency_positions = make_buffer();
+  adjacency_indices = make_buffer();
+  adjacency_vao = make_vertex_array();
+  glNamedBufferStorage(adjacency_positions.get(),
+                       static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(),
+                       0);
+  glNamedBufferStorage(adjacency_indices.get(),
+                       static_cast<GLsizeiptr>(adjacency.size() * sizeof(std::uint32_t)),
+                       adjacency.data(), 0);
+  glVertexArrayVertexBuffer(adjacency_vao.get(), 0, adjacency_positions.get(), 0,
+                            sizeof(glm::vec4));
+  glVertexArrayAttribFormat(adjacency_vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(adjacency_vao.get(), 0, 0);
+  glEnableVertexArrayAttrib(adjacency_vao.get(), 0);
+  glVertexArrayElementBuffer(adjacency_vao.get(), adjacency_indices.get());
+  adjacency_index_count = static_cast<GLsizei>(adjacency.size());
+}
+
+// One CPU-built volume on the GPU, its triangles grouped by weight so that a stencil draw can
+// take each group with the stencil ops of its sign, |weight| times.
+struct GlBackend::VolumeUpload {
+  Object buffer = make_buffer();
+  Object vao = make_vertex_array();
+  struct Group {
+    std::int32_t weight;
+    GLint first;
+    GLsizei count;
+  };
+  std::vector<Group> groups;
+  GLsizei vertices = 0;
+  bool unit_weights = true;  // every weight +-1
+
+  void upload(const VolumeBuffer& volume, bool light_caps, bool dark_caps);
+};
+
+void GlBackend::VolumeUpload::upload(const VolumeBuffer& volume, bool light_caps, bool dark_caps) {
+  std::map<std::int32_t, std::vector<VolumeVertex>> by_weight;
+  auto add = [&](const PrimitiveList& list, int corners) {
+    const int per = corners == kQuadCorners ? 2 : 1;
+    for (std::size_t p = 0; p < list.size(); ++p) {
+      const std::int32_t w = list.weights[p];
+      if (w == 0) continue;
+      std::vector<VolumeVertex>& out = by_weight[w];
+      const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
+      for (int t = 0; t < per; ++t)
+        for (int k = 0; k < 3; ++k) out.push_back({v[kQuadTriangles[3 * t + k]], w});
+    }
+  };
+  add(volume.sides, kQuadCorners);
+  if (light_caps) add(volume.light_caps, kTriangleCorners);
+  if (dark_caps) add(volume.dark_caps, kTriangleCorners);
+  std::vector<VolumeVertex> all;
+  groups.clear();
+  unit_weights = true;
+  for (auto& [weight, vertices] : by_weight) {
+    groups.push_back(
+        {weight, static_cast<GLint>(all.size()), static_cast<GLsizei>(vertices.size())});
+    all.insert(all.end(), vertices.begin(), vertices.end());
+    unit_weights = unit_weights && (weight == 1 || weight == -1);
+  }
+  vertices = static_cast<GLsizei>(all.size());
+  buffer = make_buffer();  // storage is immutable: a new buffer per upload
+  glNamedBufferStorage(
+      buffer.get(),
+      static_cast<GLsizeiptr>(std::max<std::size_t>(all.size(), 1) * sizeof(VolumeVertex)),
+      all.empty() ? nullptr : all.data(), 0);
+  glVertexArrayVertexBuffer(vao.get(), 0, buffer.get(), 0, sizeof(VolumeVertex));
+  glVertexArrayAttribFormat(vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribIFormat(vao.get(), 1, 1, GL_INT, offsetof(VolumeVertex, weight));
+  for (GLuint a : {0u, 1u}) {
+    glVertexArrayAttribBinding(vao.get(), a, 0);
+    glEnableVertexArrayAttrib(vao.get(), a);
+  }
+}
+
+// The frame's render targets, remade when the size changes.
+struct GlBackend::Targets {
+  int width = 0, height = 0;
+  Object ids = make_texture(GL_TEXTURE_2D), color = make_texture(GL_TEXTURE_2D),
+         depth_stencil = make_texture(GL_TEXTURE_2D), counts = make_texture(GL_TEXTURE_2D),
+         log_light = make_texture(GL_TEXTURE_2D), out = make_texture(GL_TEXTURE_2D);
+  // scene: ids, colour, depth-stencil; count: the additive count target and the same
+  // depth-stencil; light: the log light map of transparent casters (RGBA32F) and the same
+  // depth-stencil; resolved: the sRGB frame.
+  Object scene = make_framebuffer(), count = make_framebuffer(), light = make_framebuffer(),
+         resolved = make_framebuffer();
+
+  Targets(int w, int h) : width(w), height(h) {
+    glTextureStorage2D(ids.get(), 1, GL_R32UI, w, h);
+    glTextureStorage2D(color.get(), 1, GL_RGBA32F, w, h);
+    glTextureStorage2D(depth_stencil.get(), 1, GL_DEPTH32F_STENCIL8, w, h);
+    glTextureStorage2D(counts.get(), 1, GL_R32F, w, h);
+    glTextureStorage2D(log_light.get(), 1, GL_RGBA32F, w, h);
+    glTextureStorage2D(out.get(), 1, GL_RGBA8, w, h);
+    // Read with texelFetch only; nearest filtering also keeps the integer texture complete.
+    for (const Object* texture : {&ids, &color, &counts, &log_light, &out}) {
+      glTextureParameteri(texture->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(texture->get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glNamedFramebufferTexture(scene.get(), GL_COLOR_ATTACHMENT0, ids.get(), 0);
+    glNamedFramebufferTexture(scene.get(), GL_COLOR_ATTACHMENT1, color.get(), 0);
+    glNamedFramebufferTexture(scene.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil.get(), 0);
+    glNamedFramebufferTexture(count.get(), GL_COLOR_ATTACHMENT0, counts.get(), 0);
+    glNamedFramebufferTexture(count.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil.get(), 0);
+    glNamedFramebufferTexture(light.get(), GL_COLOR_ATTACHMENT0, log_light.get(), 0);
+    glNamedFramebufferTexture(light.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil.get(), 0);
+    glNamedFramebufferTexture(resolved.get(), GL_COLOR_ATTACHMENT0, out.get(), 0);
+  }
+  bool complete() const {
+    for (const Object* fbo : {&scene, &count, &light, &resolved})
+      if (glCheckNamedFramebufferStatus(fbo->get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return false;
+    return true;
+  }
+};
+
+Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
+                                                       std::optional<Context> context) {
+  if (epoxy_gl_version() < 45)
+    return make_error("the OpenGL backend needs OpenGL 4.5; the current context has " +
+                      std::to_string(epoxy_gl_version() / 10) + "." +
+                      std::to_string(epoxy_gl_version() % 10));
+  std::unique_ptr<GlBackend> r(new GlBackend);
+  r->context_ = std::move(context);
+  r->settings_ = settings;
+  r->info_ = query_info();
+  using namespace glsl;
+  struct Build {
+    Object* out;
+    const char* name;
+    std::initializer_list<ShaderSource> sources;
+  };
+  const Build builds[] = {
+      {&r->surface_depth_[0],
+       "depth",
+       {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kDepthFragment}}},
+      {&r->surface_lit_[0],
+       "lit",
+       {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kLitFragment}}},
+      {&r->surface_depth_[1],
+       "depth through a geometry shader",
+       {{GL_VERTEX_SHADER, kSurfaceVertex},
+        {GL_GEOMETRY_SHADER, kSurfaceGeometry},
+        {GL_FRAGMENT_SHADER, kDepthFragment}}},
+      {&r->surface_lit_[1],
+       "lit through a geometry shader",
+       {{GL_VERTEX_SHADER, kSurfaceVertex},
+        {GL_GEOMETRY_SHADER, kSurfaceGeometry},
+        {GL_FRAGMENT_SHADER, kLitFragment}}},
+      {&r->volume_cpu_,
+       "cpu volumes",
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, kCountFragment}}},
+      {&r->volume_gpu_,
+       "gpu volumes",
+       {{GL_VERTEX_SHADER, kPassVertex},
+        {GL_GEOMETRY_SHADER, kVolumeGeometry},
+        {GL_FRAGMENT_SHADER, kCountFragment}}},
+      {&r->light_map_cpu_,
+       "cpu volumes into the light map",
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, kLightMapFragment}}},
+      {&r->light_map_gpu_,
+       "gpu volumes into the light map",
+       {{GL_VERTEX_SHADER, kPassVertex},
+        {GL_GEOMETRY_SHADER, kVolumeGeometry},
+        {GL_FRAGMENT_SHADER, kLightMapFragment}}},
+      {&r->cover_,
+       "transparent surfaces in front",
+       {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kCoverFragment}}},
+      {&r->see_through_,
+       "seen through transparent surfaces",
+       {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kSeeThroughFragment}}},
+      {&r->background_,
+       "background",
+       {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kBackgroundFragment}}},
+      {&r->resolve_,
+       "resolve",
+       {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveFragment}}},
+  };
+  for (const Build& b : builds) {
+    auto program = link_program(b.name, b.sources);
+    if (!program) return program.error();
+    *b.out = std::move(*program);
+  }
+  r->empty_vao_ = make_vertex_array();
+
+  if (const std::string error = take_error(); !error.empty())
+    return make_error("setting up the OpenGL backend failed with " + error);
+  return r;
+}
+
+GlBackend::~GlBackend() = default;
+
+GlBackend::MeshBuffers& GlBackend::mesh_buffers(const SceneObject& object) {
+  std::unique_ptr<MeshBuffers>& slot = meshes_[object.topology.get()];
+  if (!slot || slot->mesh != object.mesh) {
+    slot = std::make_unique<MeshBuffers>();
+    MeshBuffers& m = *slot;
+    m.mesh = object.mesh;
+    m.topology = object.topology;
+    const Mesh& mesh = *object.mesh;
+    std::vector<glm::vec4> points;
+    points.reserve(mesh.positions.size());
+    for (const glm::vec3& p : mesh.positions) points.emplace_back(p, 1.0f);
+    std::vector<glm::vec4> normals(mesh.triangle_count());
+    for (std::size_t f = 0; f < normals.size(); ++f) {
+      const glm::dvec3 a(mesh.positions[mesh.indices[3 * f]]);
+      const glm::dvec3 n = glm::cross(glm::dvec3(mesh.positions[mesh.indices[3 * f + 1]]) - a,
+                                      glm::dvec3(mesh.positions[mesh.indices[3 * f + 2]]) - a);
+      const double len = glm::length(n);
+      normals[f] = glm::vec4(len > 0.0 ? glm::vec3(n / len) : glm::vec3(0.0f), 0.0f);
+    }
+    glNamedBufferStorage(m.positions.get(),
+                         static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec4)), points.data(),
+                         0);
+    glNamedBufferStorage(m.indices.get(),
+                         static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                         mesh.indices.data(), 0);
+    glNamedBufferStorage(
+        m.normals.get(),
+        static_cast<GLsizeiptr>(std::max<std::size_t>(normals.size(), 1) * sizeof(glm::vec4)),
+        normals.data(), 0);
+    glVertexArrayVertexBuffer(m.vao.get(), 0, m.positions.get(), 0, sizeof(glm::vec4));
+    glVertexArrayAttribFormat(m.vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(m.vao.get(), 0, 0);
+    glEnableVertexArrayAttrib(m.vao.get(), 0);
+    glVertexArrayElementBuffer(m.vao.get(), m.indices.get());
+    m.index_count = static_cast<GLsizei>(mesh.indices.size());
+  }
+  slot->used = true;
+  return *slot;
+}
+
+Expected<void> GlBackend::supports(const RenderOptions& options) const {
+  if (soft_only(options.method))
+    return make_error("--method " + std::string(to_string(options.method)) +
+                      " runs in the soft backend only (the split test and the ZP+ pre-fill are "
+                      "built in the software rasterizer)");
+  if (options.tile_work) return make_error("tile work is the software rasterizer's");
+  return check_settings(settings_, options.generator);
+}
+
+void GlBackend::finish() { glFinish(); }
+
+template <class PerObject>
+void GlBackend::draw_surfaces(Layer layer, PerObject&& per_object) {
+  const FramePlan& plan = in_->plan;
+  for (std::size_t o = 0; o < plan.objects.size(); ++o) {
+    if (plan.transparent(o) != (layer == Layer::glass)) continue;
+    const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
+    glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    per_object(o);
+    glBindVertexArray(frame_meshes_[o]->vao.get());
+    glDrawElements(GL_TRIANGLES, frame_meshes_[o]->index_count, GL_UNSIGNED_INT, nullptr);
+  }
+}
+
+void GlBackend::begin_frame(const FrameInputs& inputs) {
+  in_ = &inputs;
+  const int w = inputs.options.width, h = inputs.options.height;
+  if (!targets_ || targets_->width != w || targets_->height != h) {
+    targets_ = std::make_unique<Targets>(w, h);
+    assert(targets_->complete());
+  }
+  for (auto& [topology, buffers] : meshes_) buffers->used = false;
+  frame_meshes_.clear();
+  for (const SceneObject& object : inputs.scene.objects)
+    frame_meshes_.push_back(&mesh_buffers(object));
+  std::erase_if(meshes_, [](const auto& entry) { return !entry.second->used; });
+  cpu_ = settings_.volumes == VolumePath::cpu;
+  uploads_.resize(std::max(uploads_.size(), inputs.scene.lights.size()));
+
+  glViewport(0, 0, w, h);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_DEPTH_CLAMP);
+  // Reversed depth, as core/projection.h makes it: clip z in [0, w], window depth z / w.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+namespace {
+const GLenum kBoth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+const GLenum kIdsOnly[] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+const GLenum kColourOnly[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+}  // namespace
+
+// The opaque layer: the background, then face ids and the ambient term. The glass layer: the
+// nearest transparent surface in front of the opaque one, and its ambient term.
+void GlBackend::depth_pass(Layer layer) {
+  const Scene& scene = in_->scene;
+  const FramePlan& plan = in_->plan;
+  Targets& t = *targets_;
+  auto ids_and_albedo = [&](std::size_t o) {
+    glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
+    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.color));
+  };
+  glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+  if (layer == Layer::opaque) {
+    const GLuint no_id = 0;
+    glClearNamedFramebufferuiv(t.scene.get(), GL_COLOR, 0, &no_id);
+    glDepthMask(GL_TRUE);
+    glStencilMask(0xFF);
+    glClearNamedFramebufferfi(t.scene.get(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(background_.get());
+    glUniform3fv(glsl::kBackgroundTop, 1, glm::value_ptr(shading::kBackgroundTop));
+    glUniform3fv(glsl::kBackgroundBottom, 1, glm::value_ptr(shading::kBackgroundBottom));
+    glUniform1i(glsl::kHeight, in_->options.height);
+    glBindVertexArray(empty_vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glNamedFramebufferDrawBuffers(t.scene.get(), 2, kBoth);
+    glDepthFunc(GL_GREATER);  // nearer is greater
+    glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
+    glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
+    glUniform1i(glsl::kVisibleOnly, GL_FALSE);
+    draw_surfaces(Layer::opaque, ids_and_albedo);
+    glDepthMask(GL_FALSE);
+    return;
+  }
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kIdsOnly);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_GREATER);
+  glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
+  draw_surfaces(Layer::glass, ids_and_albedo);
+  glDepthMask(GL_FALSE);
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
+  glDepthFunc(GL_EQUAL);
+  glEnable(GL_BLEND);
+  glBindTextureUnit(2, t.ids.get());  // read, not written: attachment 0 is off
+  glUniform1i(glsl::kVisibleOnly, GL_TRUE);
+  glBlendFunc(GL_ONE, GL_ONE);  // colour += opacity * ambient * albedo
+  glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
+  draw_surfaces(Layer::glass, [&](std::size_t o) {
+    const Material& material = scene.objects[o].material;
+    const glm::vec3 reflected = material.opacity * material.color;
+    glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
+    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(reflected));
+  });
+  glUniform1i(glsl::kVisibleOnly, GL_FALSE);
+  glDisable(GL_BLEND);
+  glDepthFunc(GL_GREATER);
+}
+
+void GlBackend::read_ids(Layer layer, SurfaceLayer& out) {
+  const int w = in_->options.width, h = in_->options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  std::vector<std::uint32_t> ids(pixels);
+  glNamedFramebufferReadBuffer(targets_->scene.get(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, targets_->scene.get());
+  glReadnPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                static_cast<GLsizei>(pixels * sizeof(std::uint32_t)), ids.data());
+  out.object.assign(pixels, -1);
+  out.face.assign(pixels, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::uint32_t id = ids[static_cast<std::size_t>(h - 1 - y) * w + x];
+      if (id == 0) continue;
+      const auto [object, face] = in_->plan.object_of(id - 1);
+      // After the glass layer's depth pass, the ids of opaque surfaces it did not cover remain.
+      if (object < 0 ||
+          in_->plan.transparent(static_cast<std::size_t>(object)) != (layer == Layer::glass))
+        continue;
+      const std::size_t p = static_cast<std::size_t>(y) * w + x;
+      out.object[p] = object;
+      out.face[p] = face;
+    }
+}
+
+// Volumes: from the CPU cache (uploaded where rebuilt), or none to make here (the geometry
+// shader builds them during the count pass).
+void GlBackend::volumes_ready(std::size_t l, const std::vector<std::uint8_t>& rebuilt) {
+  const FramePlan& plan = in_->plan;
+  std::vector<std::unique_ptr<VolumeUpload>>& uploads = uploads_[l];
+  unit_weights_ = true;
+  if (!cpu_) uploads.clear();  // the cache may change unseen: upload afresh when back on cpu
+  uploads.resize(plan.objects.size());
+  for (std::size_t o = 0; cpu_ && o < plan.objects.size(); ++o) {
+    const bool fresh = !uploads[o];
+    if (fresh) uploads[o] = std::make_unique<VolumeUpload>();
+    const VolumePlan& v = plan.volume(l, o);
+    const bool zfail = v.rule == VolumeRule::zfail;
+    if (fresh || rebuilt[o])
+      uploads[o]->upload(in_->volumes.volume(l, o), zfail || v.light_caps_everywhere, zfail);
+    if (!plan.transparent(o)) unit_weights_ = unit_weights_ && uploads[o]->unit_weights;
+  }
+}
+
+namespace {
+
+// The clip-to-window depth rule of both backends: fragments nearer than the stored depth pass
+// (z-pass counts them), the others fail (z-fail counts them).
+enum class Rule : std::uint8_t { zpass, zfail };
+
+// Sets up one draw of weight sign `sign` under `rule`, into an additive target or the stencil.
+void count_state(bool additive, Rule rule, int sign) {
+  if (additive) {
+    glDepthFunc(rule == Rule::zpass ? GL_GREATER : GL_LEQUAL);
+    glUniform1f(glsl::kRuleSign, static_cast<float>(rule == Rule::zpass ? sign : -sign));
+    return;
+  }
+  glDepthFunc(GL_GREATER);
+  const GLenum up = sign > 0 ? GL_INCR_WRAP : GL_DECR_WRAP;
+  const GLenum down = sign > 0 ? GL_DECR_WRAP : GL_INCR_WRAP;
+  if (rule == Rule::zpass) {
+    glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, up);
+    glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, down);
+  } else {
+    glStencilOpSeparate(GL_FRONT, GL_KEEP, down, GL_KEEP);
+    glStencilOpSeparate(GL_BACK, GL_KEEP, up, GL_KEEP);
+  }
+}
+
+}  // namespace
+
+void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
+  const FramePlan& plan = in_->plan;
+  const VolumePlan& v = plan.volume(l, o);
+  const Rule rule = v.rule == VolumeRule::zfail ? Rule::zfail : Rule::zpass;
+  // z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: clamp rather
+  // than clip. (z-pass keeps near-plane clipping, as the software backend does.)
+  if (rule == Rule::zfail)
+    glEnable(GL_DEPTH_CLAMP);
+  else
+    glDisable(GL_DEPTH_CLAMP);
+  const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
+  glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+  const int mirror = plan.objects[o].weight_sign;
+  if (cpu_) {
+    const VolumeUpload& up = *uploads_[l][o];
+    glBindVertexArray(up.vao.get());
+    if (additive) {
+      count_state(true, rule, mirror);
+      glDrawArrays(GL_TRIANGLES, 0, up.vertices);
+    } else {
+      for (const VolumeUpload::Group& g : up.groups) {
+        count_state(false, rule, g.weight > 0 ? mirror : -mirror);
+        for (int k = 0; k < std::abs(g.weight); ++k) glDrawArrays(GL_TRIANGLES, g.first, g.count);
+      }
+    }
+    return;
+  }
+  const bool robust = v.build.generator != Generator::standard;
+  MeshBuffers& m = *frame_meshes_[o];
+  if (!m.adjacency_vao) m.build_adjacency();
+  glBindVertexArray(m.adjacency_vao.get());
+  glUniform4fv(glsl::kLight, 1, glm::value_ptr(v.object_light));
+  glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(v.build.far_plane));
+  glUniform1i(glsl::kRobust, robust);
+  glUniform1i(glsl::kCaps, rule == Rule::zfail       ? glsl::kCapsAll
+                           : v.light_caps_everywhere ? glsl::kCapsLight
+                                                     : glsl::kCapsNone);
+  auto draw_emit = [&](int emit, int sign) {
+    glUniform1i(glsl::kEmit, emit);
+    count_state(additive, rule, sign);
+    glDrawElements(GL_TRIANGLES_ADJACENCY, m.adjacency_index_count, GL_UNSIGNED_INT, nullptr);
+  };
+  if (additive) {
+    draw_emit(glsl::kEmitWeighted, mirror);
+  } else {
+    draw_emit(glsl::kEmitPositive, mirror);
+    if (robust && rule == Rule::zfail) draw_emit(glsl::kEmitNegative, -mirror);
+  }
+}
+
+void GlBackend::begin_mask(std::size_t) {
+  Targets& t = *targets_;
+  into_light_map_ = false;
+  mask_additive_ = settings_.counts == CountTarget::additive ||
+                   (settings_.counts == CountTarget::automatic && !unit_weights_);
+  if (mask_additive_) {
+    const float zero[4] = {0, 0, 0, 0};
+    glBindFramebuffer(GL_FRAMEBUFFER, t.count.get());
+    glClearNamedFramebufferfv(t.count.get(), GL_COLOR, 0, zero);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  } else {
+    glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+    const GLint no_count = 0;
+    glClearNamedFramebufferiv(t.scene.get(), GL_STENCIL, 0, &no_count);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  }
+  glUseProgram(cpu_ ? volume_cpu_.get() : volume_gpu_.get());
+}
+
+// Kim et al. Eq. 3: each count adds its caster's log transmittance, in float32 with additive
+// blending.
+void GlBackend::begin_light_map(std::size_t) {
+  Targets& t = *targets_;
+  into_light_map_ = true;
+  const float zero[4] = {0, 0, 0, 0};
+  glBindFramebuffer(GL_FRAMEBUFFER, t.light.get());
+  glClearNamedFramebufferfv(t.light.get(), GL_COLOR, 0, zero);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glUseProgram(cpu_ ? light_map_cpu_.get() : light_map_gpu_.get());
+}
+
+void GlBackend::count_volume(std::size_t l, std::size_t o) {
+  if (!into_light_map_) return draw_volume(l, o, mask_additive_);
+  const FramePlan& plan = in_->plan;
+  const auto group = static_cast<std::size_t>(plan.objects[o].glass_group);
+  glUniform3fv(glsl::kPerCount, 1, glm::value_ptr(plan.glass[group].log_transmittance));
+  draw_volume(l, o, true);
+}
+
+void GlBackend::end_counts() {
+  glDisable(GL_DEPTH_CLAMP);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);  // the stencil holds the mask until the lit pass reads it
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void GlBackend::read_mask(std::size_t l, SurfaceLayer& layer) {
+  Targets& t = *targets_;
+  const int w = in_->options.width, h = in_->options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  std::vector<std::uint8_t>& mask = layer.shadowed[l];
+  if (mask_additive_) {
+    std::vector<float> counts(pixels);
+    glNamedFramebufferReadBuffer(t.count.get(), GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t.count.get());
+    glReadnPixels(0, 0, w, h, GL_RED, GL_FLOAT, static_cast<GLsizei>(pixels * sizeof(float)),
+                  counts.data());
+    flip_rows(counts, w, h, mask, [](float c) -> std::uint8_t { return c != 0.0f; });
+  } else {
+    std::vector<std::uint8_t> stencil(pixels);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t.scene.get());
+    glReadnPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels),
+                  stencil.data());
+    flip_rows(stencil, w, h, mask, [](std::uint8_t c) -> std::uint8_t { return c != 0; });
+  }
+}
+
+void GlBackend::read_light_map(std::size_t l, SurfaceLayer& layer) {
+  Targets& t = *targets_;
+  const int w = in_->options.width, h = in_->options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  std::vector<glm::vec4> log_light(pixels);
+  glNamedFramebufferReadBuffer(t.light.get(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.light.get());
+  glReadnPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels * sizeof(glm::vec4)),
+                log_light.data());
+  flip_rows(log_light, w, h, layer.transmitted[l],
+            [](const glm::vec4& c) { return glm::exp(glm::vec3(c)); });
+  for (std::size_t p = 0; p < pixels; ++p)
+    if (layer.shadowed[l][p]) layer.transmitted[l][p] = glm::vec3(0.0f);
+}
+
+// The layer's surfaces again, at equal depth, added where the count is 0.
+void GlBackend::light_pass(std::size_t l, Layer layer) {
+  const Scene& scene = in_->scene;
+  const FramePlan& plan = in_->plan;
+  Targets& t = *targets_;
+  const bool glass_layer = layer == Layer::glass;
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
+  glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+  if (mask_additive_) {
+    glDisable(GL_STENCIL_TEST);
+    glBindTextureUnit(0, t.counts.get());
+  } else {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 0, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
+  glBindTextureUnit(1, t.log_light.get());
+  glBindTextureUnit(2, t.ids.get());  // read, not written: attachment 0 is off
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glDepthFunc(GL_EQUAL);
+  glUseProgram(surface_lit_[cpu_ ? 0 : 1].get());
+  const SceneLight& light = scene.lights[l];
+  const glm::vec3 radiance = light.color * light.intensity;
+  glUniform4fv(glsl::kLight, 1, glm::value_ptr(plan.lights[l]));
+  glUniform1i(glsl::kCountTexture, mask_additive_);
+  glUniform1i(glsl::kLightMap, plan.has_glass());
+  glUniform1f(glsl::kSpecular, shading::kSpecular);
+  glUniform1f(glsl::kShininess, shading::kShininess);
+  draw_surfaces(layer, [&](std::size_t o) {
+    const Material& material = scene.objects[o].material;
+    const glm::mat4& model = plan.objects[o].model;
+    const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model))));
+    // A transparent surface reflects its opacity's share; the rest passes (the filter pass).
+    const glm::vec3 reflected = radiance * (glass_layer ? material.opacity : 1.0f);
+    glUniformMatrix4fv(glsl::kModel, 1, GL_FALSE, glm::value_ptr(model));
+    glUniformMatrix3fv(glsl::kNormalMatrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(material.color));
+    glUniform3fv(glsl::kRadiance, 1, glm::value_ptr(reflected));
+    glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame_meshes_[o]->normals.get());
+  });
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glDepthFunc(GL_GREATER);
+}
+
+// What lies behind the transparent surfaces, seen through every one of them.
+void GlBackend::see_through() {
+  const FramePlan& plan = in_->plan;
+  Targets& t = *targets_;
+  glBindFramebuffer(GL_FRAMEBUFFER, t.light.get());
+  const float zero[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(t.light.get(), GL_COLOR, 0, zero);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glDepthFunc(GL_GREATER);
+  glUseProgram(cover_.get());
+  draw_surfaces(Layer::glass, [&](std::size_t o) {
+    const auto group = static_cast<std::size_t>(plan.objects[o].glass_group);
+    glUniform3fv(glsl::kPerCount, 1, glm::value_ptr(plan.glass[group].log_transmittance));
+  });
+  glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
+  glDisable(GL_DEPTH_TEST);
+  glBlendFunc(GL_ZERO, GL_SRC_COLOR);  // colour *= exp(log transmittance in front)
+  glUseProgram(see_through_.get());
+  glBindTextureUnit(1, t.log_light.get());
+  glBindVertexArray(empty_vao_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+}
+
+// The colour to sRGB; then the state as the frame found it.
+void GlBackend::shade() {
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_->resolved.get());
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(resolve_.get());
+  glBindTextureUnit(0, targets_->color.get());
+  glBindVertexArray(empty_vao_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glEnable(GL_DEPTH_TEST);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  assert(take_error().empty());
+}
+
+void GlBackend::read_image(Image& image) {
+  const int w = in_->options.width, h = in_->options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  std::vector<std::uint32_t> rgba(pixels);
+  glNamedFramebufferReadBuffer(targets_->resolved.get(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, targets_->resolved.get());
+  glReadnPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
+                static_cast<GLsizei>(pixels * sizeof(std::uint32_t)), rgba.data());
+  std::vector<std::uint32_t> rows;
+  flip_rows(rgba, w, h, rows, [](std::uint32_t c) { return c; });
+  image.width = w;
+  image.height = h;
+  image.rgba.resize(pixels * 4);
+  std::memcpy(image.rgba.data(), rows.data(), pixels * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+void GlBackend::present() {
+  const int w = targets_->width, h = targets_->height;
+  glBlitNamedFramebuffer(targets_->resolved.get(), 0, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
+                         GL_NEAREST);
+}
+
+}  // namespace shadowvol::gl

@@ -1,0 +1,91 @@
+#include "render/frame.h"
+
+#include <algorithm>
+
+#include <string>
+
+#include "core/names.h"
+#include "raster/raster.h"
+
+namespace shadowvol {
+std::string_view to_string(Method method) {
+  switch (method) {
+    case Method::zpass:
+      return "zpass";
+    case Method::zfail:
+      return "zfail";
+    case Method::automatic:
+      return "auto";
+    case Method::split_plane:
+      return "spsv";
+    case Method::zpass_prefill:
+      return "zp+db";
+  }
+  return "unknown";
+}
+
+Expected<Method> parse_method(std::string_view name) {
+  return parse_name(
+      name,
+      {Method::zpass, Method::zfail, Method::automatic, Method::split_plane, Method::zpass_prefill},
+      "method");
+}
+
+std::string_view to_string(Extrusion extrusion) {
+  return extrusion == Extrusion::infinite ? "infinite" : "bounded";
+}
+
+Expected<Extrusion> parse_extrusion(std::string_view name) {
+  return parse_name(name, {Extrusion::infinite, Extrusion::bounded}, "extrusion");
+}
+
+std::string_view to_string(SplitPlanes planes) {
+  return planes == SplitPlanes::laine ? "laine" : "sampled";
+}
+
+Expected<SplitPlanes> parse_split_planes(std::string_view name) {
+  return parse_name(name, {SplitPlanes::laine, SplitPlanes::sampled}, "split-plane construction");
+}
+
+std::string_view to_string(SplitParts parts) {
+  return parts == SplitParts::each ? "each" : "whole";
+}
+
+Expected<SplitParts> parse_split_parts(std::string_view name) {
+  return parse_name(name, {SplitParts::each, SplitParts::whole}, "split-plane decomposition");
+}
+
+Expected<void> check_options(const RenderOptions& options) {
+  if (options.width < 1 || options.height < 1 || options.width > raster::kMaxViewport ||
+      options.height > raster::kMaxViewport)
+    return make_error("image size " + std::to_string(options.width) + "x" +
+                      std::to_string(options.height) + " is outside 1x1 .. " +
+                      std::to_string(raster::kMaxViewport) + "x" +
+                      std::to_string(raster::kMaxViewport));
+  return {};
+}
+
+FrameStats& FrameStats::operator+=(const FrameStats& other) {
+  ms_depth += other.ms_depth;
+  ms_volumes += other.ms_volumes;
+  ms_counts += other.ms_counts;
+  ms_shade += other.ms_shade;
+  ms_readback += other.ms_readback;
+  triangles += other.triangles;
+  volume_primitives += other.volume_primitives;
+  objects_zpass += other.objects_zpass;
+  objects_zfail += other.objects_zfail;
+  objects_split += other.objects_split;
+  if (zfail_lights.size() < other.zfail_lights.size())
+    zfail_lights.resize(other.zfail_lights.size());
+  for (std::size_t o = 0; o < other.zfail_lights.size(); ++o)
+    zfail_lights[o] += other.zfail_lights[o];
+  volumes_built += other.volumes_built;
+  volumes_reused += other.volumes_reused;
+  depth += other.depth;
+  counts += other.counts;
+  split_sampling += other.split_sampling;
+  return *this;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,155 @@
+// shadowvol render: what a frame is and how it is asked for.
+//
+// Owns: the options a frame is drawn with (method, generator, extrusion, split planes) and their
+// checks, and what a frame leaves behind: the image, per pixel the object and face it shows, per
+// light whether it is lit (and how much light arrives through transparent casters), and the
+// frame's stats. Papers: Intel "mainstream shadow volumes" and GPU Gems 3 ch. 11 (z-pass /
+// z-fail, caps, extrusion to infinity, per-object choice of the method), Laine 2005 (split
+// planes), Kim, Kim & Turk 2008 (transparent casters).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/expected.h"
+#include "core/volume.h"
+#include "raster/raster.h"
+#include "scene/scene.h"
+
+namespace shadowvol {
+
+enum class Method : std::uint8_t {
+  zpass,      // count volume faces in front of the surface; wrong when the eye is in a volume
+  zfail,      // count those behind it (needs caps); right everywhere
+  automatic,  // per object: z-pass unless its volume may reach the near plane (GPU Gems 3 §11.2.3)
+  // Per tile: z-pass or z-fail by the side of a split plane through the volume (Laine 2005;
+  // software backend only). Where a volume may reach the near plane, its z-pass tiles start from
+  // the near-plane pre-fill (ZP+); where no pre-fill can be made (the light in the near plane's
+  // plane), the volume takes z-fail whole.
+  split_plane,
+  // Z-pass made exact by the near-plane pre-fill of ZP+ (Hornus et al. 2005) where a volume
+  // may reach the near plane; with depth bounds, Laine 2005's first baseline (software only).
+  zpass_prefill,
+};
+std::string_view to_string(Method method);
+Expected<Method> parse_method(std::string_view name);
+// Whether only the software backend draws `method` (it tests tiles against split planes, or
+// pre-fills from the near plane).
+inline bool soft_only(Method method) {
+  return method == Method::split_plane || method == Method::zpass_prefill;
+}
+
+// How far volumes reach: to infinity (w = 0, with an infinite far plane or depth clamp; GPU Gems
+// 3 §11.3.2), or bounded, ended on a plane just beyond the scene's bounds and closed by dark caps
+// there (Laine 2005 §7 extrudes to the scene's extent). Bounded volumes cover less of the screen,
+// give z-fail a far depth bound, and are exact wherever a receiver can be.
+enum class Extrusion : std::uint8_t { infinite, bounded };
+std::string_view to_string(Extrusion extrusion);
+Expected<Extrusion> parse_extrusion(std::string_view name);
+
+// How Method::split_plane gives an object with SplitPlaneChoice::automatic its split plane:
+// Laine 2005 §4's rule of thumb (Point-Camera-Light, Point-Point-Light for elongated objects, our
+// `flat` for flat ones), or that plane and 39 others (2 for flat objects) weighed per volume and
+// frame by counting the volume's layers at one pixel in every 32 x 32 block
+// (soft/split_sampler.h; the samples' work is in FrameStats::split_sampling), taking the
+// cheapest.
+enum class SplitPlanes : std::uint8_t { laine, sampled };
+std::string_view to_string(SplitPlanes planes);
+Expected<SplitPlanes> parse_split_planes(std::string_view name);
+
+// Whether Method::split_plane gives each part of a caster (Topology's parts: faces joined through
+// shared vertices) a split plane of its own, as Laine 2005 §6 decomposes casters into
+// sub-objects, found here automatically: `each` (an object of 2 to kMaxSplitParts parts; one
+// plane for an object of more, so that a triangle soup's thousands of parts do not each cost
+// draws and a sampling), or one plane for the `whole` object. Parts cast their volumes apart from
+// one another, so the side quads drawn are the same either way; the depth bounds stay the
+// object's.
+enum class SplitParts : std::uint8_t { each, whole };
+inline constexpr std::size_t kMaxSplitParts = 64;
+std::string_view to_string(SplitParts parts);
+Expected<SplitParts> parse_split_parts(std::string_view name);
+
+struct RenderOptions {
+  int width = 960;
+  int height = 540;
+  Method method = Method::automatic;
+  Generator generator = Generator::automatic;
+  Extrusion extrusion = Extrusion::infinite;
+  SplitPlanes split_planes = SplitPlanes::sampled;
+  SplitParts split_parts = SplitParts::each;
+  // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
+  // one colour per light, so that a person can see the volumes.
+  bool show_volumes = false;
+  // Software backend: record the count passes' work per 8x8 tile into Frame::tile_work (for
+  // `render --heatmap`); the gl backend records none.
+  bool tile_work = false;
+  // With tile_work: also each object's volume's share, into Frame::object_tile_work (for the
+  // suite's per-tile oracle, `bench --suite spsv`).
+  bool tile_work_per_object = false;
+};
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // 8-bit sRGB, row 0 at the top
+};
+
+struct FrameStats {
+  double ms_depth = 0, ms_volumes = 0, ms_counts = 0, ms_shade = 0;
+  // Taking what the frame shows into Frame: ids, masks, light and image (the read-back verbs).
+  double ms_readback = 0;
+  std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
+  std::size_t volume_primitives = 0;          // over all lights
+  int objects_zpass = 0, objects_zfail = 0;   // over all lights
+  int objects_split = 0;                      // over all lights: drawn by a split plane
+  std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for
+  int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work
+  raster::Counters depth, counts;
+  // Software backend, SplitPlanes::sampled: the split-plane sampler's own drawing (on a target of
+  // one pixel per sampled tile), apart from `counts` and from the tile work, since its samples
+  // are not the frame's pixels; what spsv cost in all is the two together.
+  raster::Counters split_sampling;
+
+  // Adds every figure of `other` (zfail_lights element-wise): the stats of several frames.
+  FrameStats& operator+=(const FrameStats& other);
+};
+
+// One layer of surfaces: what each pixel shows in it, and per light how much of the light
+// reaches it there.
+struct SurfaceLayer {
+  std::vector<std::int32_t> object;  // per pixel: index into scene.objects, -1 for none
+  std::vector<std::uint32_t> face;   // per pixel: face of that object
+  // Per light, per pixel: the opaque casters' count != 0 (transparent casters never shadow
+  // fully; they are in `transmitted`).
+  std::vector<std::vector<std::uint8_t>> shadowed;
+  // Scenes with transparent casters only, else empty: per light, per pixel, the fraction of the
+  // light (linear RGB, per channel) that reaches the surface, the product of the transmittances
+  // of the transparent surfaces between them (Kim, Kim & Turk 2008 §2); 0 where shadowed.
+  std::vector<std::vector<glm::vec3>> transmitted;
+};
+
+// What a frame leaves behind besides the picture: what each pixel shows, and per light whether
+// it is lit. The verifier compares these against the ray-traced reference. The layer the frame
+// is (object, face, shadowed, transmitted) holds the opaque surfaces: transparent casters are
+// seen through, so they are not in it.
+struct Frame : SurfaceLayer {
+  Image image;
+  // Scenes with transparent casters, else empty: the nearest transparent surface in front of the
+  // opaque one (object -1 where none), and the light its other layers and the other casters let
+  // reach it (the paper's partial self-shadowing, §4-5).
+  SurfaceLayer glass;
+  FrameStats stats;
+  // RenderOptions::tile_work, software backend: per 8x8 tile (raster::kTileSize), row-major, the
+  // count passes' work over all lights; else empty.
+  std::vector<raster::TileWork> tile_work;
+  // RenderOptions::tile_work_per_object: per object, per tile, its volume's part of tile_work.
+  std::vector<std::vector<raster::TileWork>> object_tile_work;
+};
+
+// Checks an options struct a person filled in: size within the rasterizer's limits.
+Expected<void> check_options(const RenderOptions& options);
+
+}  // namespace shadowvol

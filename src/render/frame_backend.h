@@ -1,0 +1,100 @@
+// shadowvol render: FrameBackend, the verbs a backend implements for the frame pipeline.
+//
+// The pipeline (render/renderer.h) decides what a frame draws and in which order; a backend
+// only knows how to draw each step, on the CPU (soft/) or through OpenGL (gl/). Each verb is one
+// kind of pass over the frame's targets, so that later passes (a depth pass from a light, an
+// occlusion query of a box against a depth target, answered later) are verbs of the same form:
+// they name what to draw and into which target, never the sequence around them.
+//
+// A frame calls begin_frame, then the verbs, all on one thread; between begin_frame and the end
+// of the frame the FrameInputs it was given stay alive and unchanged (but for the Frame, which
+// the verbs fill).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/expected.h"
+#include "render/frame.h"
+#include "render/frame_plan.h"
+#include "render/volume_cache.h"
+#include "scene/scene.h"
+
+namespace shadowvol {
+
+// Which surfaces a pass takes: the opaque ones (the frame's first layer), or the transparent
+// ones (the glass layer: the nearest transparent surface in front of the opaque one).
+enum class Layer : std::uint8_t { opaque, glass };
+
+// What the verbs of one frame read, and the Frame they fill.
+struct FrameInputs {
+  const Scene& scene;
+  const RenderOptions& options;
+  const FramePlan& plan;
+  // The CPU-built volumes, current for each light from volumes_ready on (where the backend
+  // counts CPU volumes, or options.show_volumes asks for them).
+  const VolumeCache& volumes;
+  Frame& frame;
+  // Whether the read verbs are called: false for a frame that stays on the device to be shown
+  // there (Renderer::present).
+  bool read_back;
+};
+
+class FrameBackend {
+ public:
+  virtual ~FrameBackend() = default;
+  // "soft" or "gl".
+  virtual std::string_view name() const = 0;
+  // What this backend cannot draw under these options, as an error a person can act on.
+  virtual Expected<void> supports(const RenderOptions& options) const = 0;
+  // Whether it counts the volumes of the VolumeCache (else it builds them as it counts).
+  virtual bool counts_cpu_volumes() const = 0;
+  // Whether a frame can stay on the device and be shown there (present).
+  virtual bool can_present() const { return false; }
+  // Waits for the work given so far to end, so that a time taken after it is the work's own.
+  virtual void finish() {}
+
+  // Sizes the targets for the frame and takes its inputs.
+  virtual void begin_frame(const FrameInputs& inputs) = 0;
+  // Depth pass from the eye: the layer's surfaces into the depth target, each pixel's face id
+  // with them (the glass layer over the opaque layer's depths, without clearing them).
+  virtual void depth_pass(Layer layer) = 0;
+  // The layer's object and face per pixel, from the depth pass's ids.
+  virtual void read_ids(Layer layer, SurfaceLayer& out) = 0;
+  // The CPU volumes of `light` are current; rebuilt[o] is 1 where object o's changed.
+  virtual void volumes_ready(std::size_t light, const std::vector<std::uint8_t>& rebuilt) = 0;
+
+  // A light's count target: cleared for the opaque casters' signed counts (its shadow mask).
+  virtual void begin_mask(std::size_t light) = 0;
+  // A light's light intensity map (Kim et al. 2008 §2): cleared, for the groups of transparent
+  // casters, each counted and then added by its log transmittance (end_group).
+  virtual void begin_light_map(std::size_t light) = 0;
+  // Counts the volume of `object` for `light` into the current target by its VolumePlan.
+  virtual void count_volume(std::size_t light, std::size_t object) = 0;
+  // Into the light map: the counts of group g's volumes times its log transmittance.
+  virtual void end_group(std::size_t group) = 0;
+  // The current count target (mask or light map) has all its counts.
+  virtual void end_counts() {}
+  // The mask (count != 0) of the layer for this light, into layer.shadowed[light].
+  virtual void read_mask(std::size_t light, SurfaceLayer& layer) = 0;
+  // The light that arrives through the transparent casters, into layer.transmitted[light]
+  // (0 where the mask shadows).
+  virtual void read_light_map(std::size_t light, SurfaceLayer& layer) = 0;
+  // The light's contribution to the layer's surfaces where its mask is clear, times what the
+  // light map lets through.
+  virtual void light_pass(std::size_t light, Layer layer) = 0;
+
+  // With transparent casters: the log transmittance of the transparent surfaces in front of the
+  // opaque layer, each counted once, which filters what the eye sees behind them.
+  virtual void see_through() = 0;
+  // The frame's colour: background, ambient, each light's contribution, the glass, into sRGB.
+  virtual void shade() = 0;
+  // The sRGB image into frame.image.
+  virtual void read_image(Image& image) = 0;
+  // Shows the last frame drawn with read_back false (can_present).
+  virtual void present() {}
+};
+
+}  // namespace shadowvol

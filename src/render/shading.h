@@ -1,0 +1,23 @@
+// shadowvol render: the shading both backends use (the OpenGL backend passes these to its
+// shaders as uniforms): ambient * albedo, plus per unshadowed light Lambert + Blinn-Phong, lit on
+// the side the eye sees; a vertical gradient behind everything; sRGB out.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+namespace shadowvol::shading {
+
+inline constexpr float kSpecular = 0.25f;
+inline constexpr float kShininess = 48.0f;
+inline constexpr glm::vec3 kBackgroundTop{0.26f, 0.28f, 0.22f};
+inline constexpr glm::vec3 kBackgroundBottom{0.16f, 0.18f, 0.22f};
+// The background at row y of h (row 0 at the top).
+glm::vec3 background(int y, int h);
+float to_srgb(float linear);
+// lround(to_srgb(linear) * 255), exactly, by a search among the 255 linear values where the 8-bit
+// code steps (found once): a frame encodes millions of channels, and pow is most of its cost.
+std::uint8_t to_srgb8(float linear);
+
+}  // namespace shadowvol::shading

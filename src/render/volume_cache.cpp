@@ -1,0 +1,31 @@
+#include "render/volume_cache.h"
+
+namespace shadowvol {
+
+const std::vector<std::uint8_t>& VolumeCache::update(const Scene& scene, const FramePlan& plan,
+                                                     std::size_t light, FrameStats& stats) {
+  if (cache_.size() < scene.lights.size()) cache_.resize(scene.lights.size());
+  std::vector<Entry>& cache = cache_[light];
+  cache.resize(scene.objects.size());
+  jobs_.clear();
+  rebuilt_.assign(scene.objects.size(), 0);
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    const SceneObject& object = scene.objects[o];
+    const VolumePlan& v = plan.volume(light, o);
+    Entry& c = cache[o];
+    if (c.topology == object.topology && c.light == v.object_light && c.options == v.build) {
+      ++stats.volumes_reused;
+      continue;
+    }
+    c.topology = object.topology;
+    c.light = v.object_light;
+    c.options = v.build;
+    jobs_.push_back({c.topology.get(), v.object_light, v.build, &c.volume});
+    rebuilt_[o] = 1;
+    ++stats.volumes_built;
+  }
+  builder_.build(jobs_);
+  return rebuilt_;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,316 @@
+#include "soft/soft_backend.h"
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <span>
+#include <tuple>
+
+#include <tbb/parallel_for.h>
+#include <glm/exponential.hpp>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "accel/near_plane.h"
+#include "render/shading.h"
+
+namespace shadowvol::soft {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Clip-space triangles of an object's mesh, 3 vertices each, in face order.
+void clip_triangles(const SceneObject& o, const glm::mat4& mvp, std::vector<glm::vec4>& out) {
+  out.clear();
+  out.reserve(o.mesh->indices.size());
+  for (std::uint32_t i : o.mesh->indices)
+    out.push_back(mvp * glm::vec4(o.mesh->positions[i], 1.0f));
+}
+
+// Clip-space triangles of a primitive list (quads split by kQuadTriangles) and their weights.
+void clip_volume(const PrimitiveList& list, int corners, const glm::mat4& mvp, int sign,
+                 std::vector<glm::vec4>& tris, std::vector<std::int32_t>& weights) {
+  const int per = corners == kQuadCorners ? 2 : 1;
+  for (std::size_t p = 0; p < list.size(); ++p) {
+    const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
+    for (int t = 0; t < per; ++t) {
+      for (int k = 0; k < 3; ++k) tris.push_back(mvp * v[kQuadTriangles[3 * t + k]]);
+      weights.push_back(sign * list.weights[p]);
+    }
+  }
+}
+
+}  // namespace
+
+Renderer soft_renderer() { return Renderer(std::make_unique<SoftBackend>()); }
+
+void SoftBackend::Grouped::group(std::span<const glm::vec4> triangles,
+                                 std::span<const std::int32_t> triangle_weights,
+                                 std::span<const std::uint32_t> keys, std::size_t key_count) {
+  offsets.assign(key_count + 1, 0);
+  for (const std::uint32_t k : keys) ++offsets[k + 1];
+  for (std::size_t k = 0; k < key_count; ++k) offsets[k + 1] += offsets[k];
+  if (std::is_sorted(keys.begin(), keys.end())) {
+    tris = triangles;
+    weights = triangle_weights;
+    return;
+  }
+  sorted_tris.resize(triangles.size());
+  sorted_weights.resize(triangle_weights.size());
+  cursor.assign(offsets.begin(), offsets.end() - 1);
+  for (std::size_t t = 0; t < keys.size(); ++t) {
+    const std::size_t at = cursor[keys[t]]++;
+    std::copy_n(&triangles[3 * t], 3, &sorted_tris[3 * at]);
+    sorted_weights[at] = triangle_weights[t];
+  }
+  tris = sorted_tris;
+  weights = sorted_weights;
+}
+
+void SoftBackend::begin_frame(const FrameInputs& inputs) {
+  in_ = &inputs;
+  const RenderOptions& options = inputs.options;
+  const int w = options.width, h = options.height;
+  if (target_.width != w || target_.height != h) target_ = raster::Target(w, h);
+  // Per object, the tile work moves out of the target after each volume, into the object's
+  // share and the frame's total.
+  target_.tile_work.assign(options.tile_work ? target_.tile_depth.size() : 0, raster::TileWork{});
+  const bool per_object = options.tile_work && options.tile_work_per_object;
+  total_work_.assign(per_object ? target_.tile_work.size() : 0, raster::TileWork{});
+  std::vector<std::vector<raster::TileWork>>& shares = inputs.frame.object_tile_work;
+  shares.resize(per_object ? inputs.scene.objects.size() : 0);
+  for (std::vector<raster::TileWork>& share : shares)
+    share.assign(target_.tile_work.size(), raster::TileWork{});
+}
+
+void SoftBackend::depth_pass(Layer layer) {
+  const Scene& scene = in_->scene;
+  const FramePlan& plan = in_->plan;
+  if (layer == Layer::opaque) target_.clear_depth();
+  std::fill(target_.id.begin(), target_.id.end(), raster::Target::kNoId);
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    if (plan.transparent(o) != (layer == Layer::glass)) continue;
+    clip_triangles(scene.objects[o], plan.view_proj * plan.objects[o].model, tris_);
+    raster::draw_depth(target_, tris_, plan.objects[o].first_id, in_->frame.stats.depth);
+  }
+  target_.update_tile_depth();
+}
+
+void SoftBackend::read_ids(Layer, SurfaceLayer& out) {
+  const std::size_t pixels = target_.id.size();
+  out.object.assign(pixels, -1);
+  out.face.assign(pixels, 0);
+  for (std::size_t p = 0; p < pixels; ++p)
+    if (target_.id[p] != raster::Target::kNoId)
+      std::tie(out.object[p], out.face[p]) = in_->plan.object_of(target_.id[p]);
+}
+
+void SoftBackend::begin_light_map(std::size_t) {
+  log_light_.assign(target_.count.size(), glm::vec3(0.0f));
+}
+
+void SoftBackend::end_group(std::size_t g) {
+  target_.take_counts_into(log_light_, in_->plan.glass[g].log_transmittance);
+}
+
+void SoftBackend::read_mask(std::size_t l, SurfaceLayer& layer) {
+  target_.take_nonzero_counts(layer.shadowed[l]);
+}
+
+void SoftBackend::read_light_map(std::size_t l, SurfaceLayer& layer) {
+  std::vector<glm::vec3>& light = layer.transmitted[l];
+  const std::vector<std::uint8_t>& shadowed = layer.shadowed[l];
+  tbb::parallel_for(std::size_t{0}, light.size(), [&](std::size_t p) {
+    light[p] = shadowed[p] ? glm::vec3(0.0f) : glm::exp(log_light_[p]);
+  });
+}
+
+void SoftBackend::count_volume(std::size_t l, std::size_t o) {
+  const FramePlan& plan = in_->plan;
+  const VolumePlan& vp = plan.volume(l, o);
+  const ObjectPlan& op = plan.objects[o];
+  FrameStats& stats = in_->frame.stats;
+  const VolumeBuffer& v = in_->volumes.volume(l, o);
+  const std::vector<PartSplit>& splits = vp.split;
+  const bool by_part = vp.by_part();
+  const glm::mat4 mvp = plan.view_proj * op.model;
+  const int sign = op.weight_sign;
+  tris_.clear();
+  weights_.clear();
+  keys_.clear();
+  // Under a split plane, each triangle's key: 2 * its part (0 for a volume split whole), plus 1
+  // for a cap, which counts only where z-fail does (Laine 2005 §3.3).
+  auto add = [&](const PrimitiveList& list, int corners, std::uint32_t cap) {
+    clip_volume(list, corners, mvp, sign, tris_, weights_);
+    if (splits.empty()) return;
+    const int per = corners == kQuadCorners ? 2 : 1;
+    for (std::size_t p = 0; p < list.size(); ++p)
+      keys_.insert(keys_.end(), per, 2 * (by_part ? list.parts[p] : 0) + cap);
+  };
+  // First what counts in every tile: the sides, and a transparent caster's light caps; then the
+  // caps that count only where z-fail does.
+  add(v.sides, kQuadCorners, 0);
+  if (vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 0);
+  if (vp.counts_caps) {
+    if (!vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 1);
+    add(v.dark_caps, kTriangleCorners, 1);
+  }
+  // Depth bounds, Laine 2005 §7's (VolumePlan::depth_bounds). Pre-filled z-pass starts inside the
+  // volume: a pixel beyond all of it must still count its way out, so no far bound.
+  raster::DepthBounds bounds = vp.depth_bounds;
+  if (vp.prefill) {  // ZP+: where z-pass counts, start from the near plane's count
+    bounds.zmin = 0.0f;
+    prefill_tris_.clear();
+    prefill_weights_.clear();
+    prefill_keys_.clear();
+    append_near_plane_prefill(v.light_caps, op.model, sign, plan.lights[l], plan.view_proj,
+                              prefill_tris_, prefill_weights_, by_part ? &prefill_keys_ : nullptr);
+  }
+  if (splits.empty()) {
+    if (vp.prefill)
+      raster::draw_counts(target_, prefill_tris_, prefill_weights_, raster::CountRule::prefill,
+                          stats.counts);
+    raster::draw_counts(
+        target_, tris_, weights_,
+        vp.rule == VolumeRule::zfail ? raster::CountRule::zfail : raster::CountRule::zpass,
+        stats.counts, bounds);
+  } else {
+    volume_groups_.group(tris_, weights_, keys_, 2 * splits.size());
+    if (vp.prefill) {
+      if (!by_part) prefill_keys_.assign(prefill_weights_.size(), 0);
+      prefill_groups_.group(prefill_tris_, prefill_weights_, prefill_keys_, splits.size());
+    }
+    for (std::size_t p = 0; p < splits.size(); ++p) {
+      const auto everywhere = volume_groups_.triangles_of(2 * p, 2 * p + 1);
+      const auto caps = volume_groups_.triangles_of(2 * p + 1, 2 * p + 2);
+      if (everywhere.empty() && caps.empty()) continue;  // a part that casts nothing
+      glm::vec4 plane = splits[p].plane;
+      if (const std::vector<glm::vec4>& candidates = splits[p].candidates; !candidates.empty())
+        plane = candidates[split_sampler_.cheapest(target_, everywhere, caps, bounds, candidates,
+                                                   stats.split_sampling)];
+      if (vp.prefill)
+        raster::draw_counts(target_, prefill_groups_.triangles_of(p, p + 1),
+                            prefill_groups_.weights_of(p, p + 1), raster::CountRule::prefill,
+                            stats.counts, {}, {plane, raster::SplitTiles::zpass_only});
+      // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
+      raster::draw_counts(target_, everywhere, volume_groups_.weights_of(2 * p, 2 * p + 1),
+                          raster::CountRule::split, stats.counts, bounds, {plane});
+      raster::draw_counts(target_, caps, volume_groups_.weights_of(2 * p + 1, 2 * p + 2),
+                          raster::CountRule::split, stats.counts, bounds,
+                          {plane, raster::SplitTiles::zfail_only});
+    }
+  }
+  if (!total_work_.empty()) {  // bookkeeping, left out of the count passes' time
+    const auto bookkeeping = Clock::now();
+    for (std::size_t t = 0; t < total_work_.size(); ++t) {
+      raster::TileWork& work = target_.tile_work[t];
+      for (raster::TileWork* sum : {&in_->frame.object_tile_work[o][t], &total_work_[t]}) {
+        sum->pixels_processed += work.pixels_processed;
+        sum->pixels_updated += work.pixels_updated;
+      }
+      work = {};
+    }
+    stats.ms_counts -= ms_since(bookkeeping);
+  }
+}
+
+void SoftBackend::see_through() {
+  const FramePlan& plan = in_->plan;
+  opaque_depth_ = target_.depth;  // into storage kept between frames
+  eye_log_.assign(target_.depth.size(), glm::vec3(0.0f));
+  std::swap(shadow_work_, target_.tile_work);  // not a shadow pass: leave the tile work alone
+  for (const GlassGroup& group : plan.glass) {
+    for (const std::size_t o : group.members) {
+      clip_triangles(in_->scene.objects[o], plan.view_proj * plan.objects[o].model, tris_);
+      weights_.assign(tris_.size() / 3, 1);
+      raster::draw_counts(target_, tris_, weights_, raster::CountRule::cover,
+                          in_->frame.stats.depth);
+    }
+    target_.take_counts_into(eye_log_, group.log_transmittance);
+  }
+  std::swap(shadow_work_, target_.tile_work);
+}
+
+// Ambient everywhere, each light as much as reaches the surface; the opaque layer seen through
+// every transparent surface in front, plus the nearest one's reflection.
+void SoftBackend::shade() {
+  const Scene& scene = in_->scene;
+  const FramePlan& plan = in_->plan;
+  Frame& frame = in_->frame;
+  const int w = in_->options.width, h = in_->options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  const std::size_t lights = scene.lights.size();
+  const bool glass = plan.has_glass();
+  // The tile work of the frame: the total where it was shared out by object. Swapped, not
+  // moved, so that the next frame reuses this one's storage.
+  frame.tile_work.swap(total_work_.empty() ? target_.tile_work : total_work_);
+  frame.image.width = w;
+  frame.image.height = h;
+  frame.image.rgba.resize(pixels * 4);
+  world_.resize(scene.objects.size());  // vertices, once per frame
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    const SceneObject& object = scene.objects[o];
+    world_[o].clear();
+    for (const glm::vec3& p : object.mesh->positions)
+      world_[o].push_back(glm::vec3(plan.objects[o].model * glm::vec4(p, 1.0f)));
+  }
+  const glm::dmat4 inv_vp(plan.inv_view_proj);
+  auto shade_at = [&](const SurfaceLayer& layer, std::span<const float> depth, int x, int y,
+                      std::size_t p) {
+    const auto o = static_cast<std::size_t>(layer.object[p]);
+    const SceneObject& object = scene.objects[o];
+    const std::uint32_t* f = &object.mesh->indices[3 * static_cast<std::size_t>(layer.face[p])];
+    const glm::vec3& a = world_[o][f[0]];
+    glm::vec3 n = glm::cross(world_[o][f[1]] - a, world_[o][f[2]] - a);
+    const float len = glm::length(n);
+    n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+    const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0, double(depth[p]),
+                         1.0);
+    const glm::dvec4 at = inv_vp * ndc;
+    const glm::vec3 pos = glm::vec3(glm::dvec3(at) / at.w);
+    const glm::vec3 to_eye = glm::normalize(-pos);  // the eye is the origin
+    if (glm::dot(n, to_eye) < 0.0f) n = -n;         // two-sided: light the side we see
+    const glm::vec3 albedo = object.material.color;
+    glm::vec3 color = scene.ambient * albedo;
+    for (std::size_t l = 0; l < lights; ++l) {
+      if (layer.shadowed[l][p]) continue;
+      const SceneLight& light = scene.lights[l];
+      const glm::vec4 lp = plan.lights[l];
+      const glm::vec3 to_light =
+          glm::normalize(lp.w != 0.0f ? glm::vec3(lp) / lp.w - pos : glm::vec3(lp));
+      const float lambert = glm::dot(n, to_light);
+      if (lambert <= 0.0f) continue;
+      const float spec = std::pow(std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))),
+                                  shading::kShininess);
+      const glm::vec3 arriving =
+          layer.transmitted.empty() ? glm::vec3(1.0f) : layer.transmitted[l][p];
+      color += light.color * light.intensity * arriving *
+               (albedo * lambert + glm::vec3(shading::kSpecular * spec));
+    }
+    return color;
+  };
+  const std::span<const float> glass_depth(target_.depth);
+  const std::span<const float> surface_depth =
+      glass ? std::span<const float>(opaque_depth_) : glass_depth;
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * w + x;
+      glm::vec3 color = frame.object[p] >= 0 ? shade_at(frame, surface_depth, x, y, p)
+                                             : shading::background(y, h);
+      if (glass) color *= glm::exp(eye_log_[p]);  // through every transparent surface in front
+      if (glass && frame.glass.object[p] >= 0) {
+        const Material& m = scene.objects[static_cast<std::size_t>(frame.glass.object[p])].material;
+        color += m.opacity * shade_at(frame.glass, glass_depth, x, y, p);
+      }
+      for (int k = 0; k < 3; ++k) frame.image.rgba[4 * p + k] = shading::to_srgb8(color[k]);
+      frame.image.rgba[4 * p + 3] = 255;
+    }
+  });
+}
+
+}  // namespace shadowvol::soft

@@ -1,0 +1,97 @@
+// shadowvol soft: SoftBackend, the frame pipeline's verbs on the tile rasterizer (src/raster),
+// threads from oneTBB. Deterministic: the same frame at any thread count.
+//
+// Owns: the frame's targets in memory (depth with face ids, signed counts, the tiles' depth
+// bounds), the count passes of every VolumeRule (z-pass, z-fail, per tile by split planes with
+// the sampler's choice of plane, the ZP+ pre-fill), and the shading. Its targets are memory, so
+// a frame is always read back: read_mask, read_light_map and read_ids take what the passes left,
+// and the light passes are folded into shade, which lights each pixel from its masks at once.
+//
+// Transparent casters (Kim, Kim & Turk 2008): each group of transparent casters of one material
+// is counted on its own (exact integer surface counts, light caps included) and added into a
+// float32 log light intensity map as count * log(transmittance); the light that arrives is exp
+// of the map. The picture is the opaque layer seen through every transparent surface in front of
+// it (counted per group the same way, along the eye's rays), plus the nearest one's reflection.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "raster/raster.h"
+#include "render/frame_backend.h"
+#include "render/renderer.h"
+#include "soft/split_sampler.h"
+
+namespace shadowvol::soft {
+
+class SoftBackend final : public FrameBackend {
+ public:
+  std::string_view name() const override { return "soft"; }
+  Expected<void> supports(const RenderOptions&) const override { return {}; }
+  bool counts_cpu_volumes() const override { return true; }
+
+  void begin_frame(const FrameInputs& inputs) override;
+  void depth_pass(Layer layer) override;
+  void read_ids(Layer layer, SurfaceLayer& out) override;
+  void volumes_ready(std::size_t, const std::vector<std::uint8_t>&) override {}
+  void begin_mask(std::size_t) override {}  // counts are zero after each read
+  void begin_light_map(std::size_t light) override;
+  void count_volume(std::size_t light, std::size_t object) override;
+  void end_group(std::size_t group) override;
+  void read_mask(std::size_t light, SurfaceLayer& layer) override;
+  void read_light_map(std::size_t light, SurfaceLayer& layer) override;
+  void light_pass(std::size_t, Layer) override {}  // in shade
+  void see_through() override;
+  void shade() override;
+  void read_image(Image&) override {}  // shade writes it
+
+ private:
+  // Triangles (3 clip-space vertices each) and their weights, grouped by a key per triangle:
+  // those of keys [first, last) are together, in order. Triangles whose keys already run in
+  // order (a volume counted whole: its sides, then its caps) are viewed where they lie, which
+  // must outlive the view; others are copied into order, stably.
+  struct Grouped {
+    std::span<const glm::vec4> tris;
+    std::span<const std::int32_t> weights;
+    std::vector<std::size_t> offsets;    // key k's are [offsets[k], offsets[k + 1])
+    std::vector<glm::vec4> sorted_tris;  // the copies, kept between frames
+    std::vector<std::int32_t> sorted_weights;
+    std::vector<std::size_t> cursor;  // where the next of key k goes, while copying
+
+    void group(std::span<const glm::vec4> triangles, std::span<const std::int32_t> triangle_weights,
+               std::span<const std::uint32_t> keys, std::size_t key_count);
+    std::span<const glm::vec4> triangles_of(std::size_t first, std::size_t last) const {
+      return tris.subspan(3 * offsets[first], 3 * (offsets[last] - offsets[first]));
+    }
+    std::span<const std::int32_t> weights_of(std::size_t first, std::size_t last) const {
+      return weights.subspan(offsets[first], offsets[last] - offsets[first]);
+    }
+  };
+
+  const FrameInputs* in_ = nullptr;  // the frame being drawn
+  raster::Target target_;
+  SplitPlaneSampler split_sampler_;
+  // Kept between frames: no reallocation. Under a split plane, a key per triangle (its part and
+  // whether only z-fail counts it) and the triangles grouped by it.
+  std::vector<glm::vec4> tris_, prefill_tris_;
+  std::vector<std::int32_t> weights_, prefill_weights_;
+  std::vector<std::uint32_t> keys_, prefill_keys_;
+  Grouped volume_groups_, prefill_groups_;
+  std::vector<glm::vec3> log_light_, eye_log_;
+  std::vector<float> opaque_depth_;  // with transparent casters: the opaque layer's depths
+  // RenderOptions::tile_work_per_object: the frame's total (the target's tile work moves into it
+  // and into the object's share after each volume).
+  std::vector<raster::TileWork> total_work_, shadow_work_;
+  std::vector<std::vector<glm::vec3>> world_;  // per object: its vertices, eye-relative
+};
+
+// A Renderer (the frame pipeline) on this backend.
+Renderer soft_renderer();
+
+}  // namespace shadowvol::soft
