@@ -33,11 +33,21 @@ Expected<std::unique_ptr<Renderer>> make_gl(const gl::GlSettings& settings) {
 
 }  // namespace
 
-Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_settings) {
+Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_settings,
+                                     const RenderOptions& options) {
+  const bool gpu_volumes = gl_settings.volumes == gl::VolumePath::gpu;
+  auto soft = [] { return std::make_unique<Renderer>(std::make_unique<soft::SoftBackend>()); };
   if (backend == Backend::soft) {
-    if (gl_settings.volumes == gl::VolumePath::gpu)
+    if (gpu_volumes)
       return make_error("geometry-shader volumes (--volumes gpu) need the gl backend");
-    return MadeRenderer{std::make_unique<Renderer>(std::make_unique<soft::SoftBackend>()), ""};
+    return MadeRenderer{soft(), ""};
+  }
+  if (auto ok = gl::check_settings(gl_settings, options.generator); !ok) return ok.error();
+  if (auto drawable = gl::check_frame(gl_settings, options); !drawable) {
+    const std::string& reason = drawable.error().message;
+    if (backend == Backend::gl) return make_error(reason + "; use --backend soft");
+    if (gpu_volumes) return make_error("--volumes gpu needs the gl backend, but " + reason);
+    return MadeRenderer{soft(), "backend auto: soft, since " + reason};
   }
   auto gl = make_gl(gl_settings);
   if (gl) {
@@ -46,10 +56,9 @@ Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_s
     return MadeRenderer{std::move(*gl), note};
   }
   if (backend == Backend::gl) return gl.error();
-  if (gl_settings.volumes == gl::VolumePath::gpu)
+  if (gpu_volumes)
     return make_error("--volumes gpu needs the gl backend, and " + gl.error().message);
-  return MadeRenderer{std::make_unique<Renderer>(std::make_unique<soft::SoftBackend>()),
-                      "backend auto: soft, since " + gl.error().message};
+  return MadeRenderer{soft(), "backend auto: soft, since " + gl.error().message};
 }
 
 }  // namespace shadowvol

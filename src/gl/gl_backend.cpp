@@ -355,13 +355,14 @@ GlBackend::MeshBuffers& GlBackend::mesh_buffers(const SceneObject& object) {
   return *slot;
 }
 
-Expected<void> GlBackend::supports(const RenderOptions& options) const {
+Expected<void> check_frame(const GlSettings& settings, const RenderOptions& options) {
   if (soft_only(options.method))
-    return make_error("--method " + std::string(to_string(options.method)) +
+    return make_error("method " + std::string(to_string(options.method)) +
                       " runs in the soft backend only (the split test and the ZP+ pre-fill are "
                       "built in the software rasterizer)");
-  if (options.tile_work) return make_error("tile work is the software rasterizer's");
-  return check_settings(settings_, options.generator);
+  if (options.tile_work)
+    return make_error("the tile work of a heatmap is counted by the software rasterizer only");
+  return check_settings(settings, options.generator);
 }
 
 void GlBackend::finish() { glFinish(); }
@@ -473,7 +474,8 @@ void GlBackend::depth_pass(Layer layer) {
 void GlBackend::read_ids(Layer layer, SurfaceLayer& out) {
   const int w = in_->options.width, h = in_->options.height;
   const std::size_t pixels = static_cast<std::size_t>(w) * h;
-  std::vector<std::uint32_t> ids(pixels);
+  std::vector<std::uint32_t>& ids = read_ids_;
+  ids.resize(pixels);
   glNamedFramebufferReadBuffer(targets_->scene.get(), GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, targets_->scene.get());
   glReadnPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT,
@@ -648,14 +650,16 @@ void GlBackend::read_mask(std::size_t l, SurfaceLayer& layer) {
   const std::size_t pixels = static_cast<std::size_t>(w) * h;
   std::vector<std::uint8_t>& mask = layer.shadowed[l];
   if (mask_additive_) {
-    std::vector<float> counts(pixels);
+    std::vector<float>& counts = read_counts_;
+    counts.resize(pixels);
     glNamedFramebufferReadBuffer(t.count.get(), GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, t.count.get());
     glReadnPixels(0, 0, w, h, GL_RED, GL_FLOAT, static_cast<GLsizei>(pixels * sizeof(float)),
                   counts.data());
     flip_rows(counts, w, h, mask, [](float c) -> std::uint8_t { return c != 0.0f; });
   } else {
-    std::vector<std::uint8_t> stencil(pixels);
+    std::vector<std::uint8_t>& stencil = read_stencil_;
+    stencil.resize(pixels);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, t.scene.get());
     glReadnPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels),
                   stencil.data());
@@ -667,7 +671,8 @@ void GlBackend::read_light_map(std::size_t l, SurfaceLayer& layer) {
   Targets& t = *targets_;
   const int w = in_->options.width, h = in_->options.height;
   const std::size_t pixels = static_cast<std::size_t>(w) * h;
-  std::vector<glm::vec4> log_light(pixels);
+  std::vector<glm::vec4>& log_light = read_light_;
+  log_light.resize(pixels);
   glNamedFramebufferReadBuffer(t.light.get(), GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, t.light.get());
   glReadnPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels * sizeof(glm::vec4)),
@@ -770,12 +775,13 @@ void GlBackend::shade() {
 void GlBackend::read_image(Image& image) {
   const int w = in_->options.width, h = in_->options.height;
   const std::size_t pixels = static_cast<std::size_t>(w) * h;
-  std::vector<std::uint32_t> rgba(pixels);
+  std::vector<std::uint32_t>& rgba = read_ids_;  // the ids are read already
+  rgba.resize(pixels);
   glNamedFramebufferReadBuffer(targets_->resolved.get(), GL_COLOR_ATTACHMENT0);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, targets_->resolved.get());
   glReadnPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
                 static_cast<GLsizei>(pixels * sizeof(std::uint32_t)), rgba.data());
-  std::vector<std::uint32_t> rows;
+  std::vector<std::uint32_t>& rows = read_rows_;
   flip_rows(rgba, w, h, rows, [](std::uint32_t c) { return c; });
   image.width = w;
   image.height = h;

@@ -24,6 +24,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "core/expected.h"
 #include "gl/context.h"
 #include "gl/objects.h"
@@ -55,6 +57,9 @@ struct GlSettings {
 // Refuses what this backend cannot draw: geometry-shader volumes with the multiplicity
 // generator (a shader emits weight +-1 per face: the robust form of the same count).
 Expected<void> check_settings(const GlSettings& settings, Generator generator);
+// Refuses, besides check_settings', what only the software rasterizer draws: the split-plane
+// and pre-filled methods (soft_only) and tile work.
+Expected<void> check_frame(const GlSettings& settings, const RenderOptions& options);
 
 class GlBackend final : public FrameBackend {
  public:
@@ -65,8 +70,9 @@ class GlBackend final : public FrameBackend {
   ~GlBackend() override;
 
   std::string_view name() const override { return "gl"; }
-  // Refuses the methods and records only the software rasterizer has, and check_settings'.
-  Expected<void> supports(const RenderOptions& options) const override;
+  Expected<void> supports(const RenderOptions& options) const override {
+    return check_frame(settings_, options);
+  }
   bool counts_cpu_volumes() const override { return settings_.volumes == VolumePath::cpu; }
   bool can_present() const override { return true; }
   void finish() override;
@@ -127,6 +133,11 @@ class GlBackend final : public FrameBackend {
   bool unit_weights_ = true;     // every opaque caster's CPU volume of the light has weights +-1
   bool mask_additive_ = false;   // the light's mask counts into the R32F target, not the stencil
   bool into_light_map_ = false;  // count_volume adds into the light map
+  // Read-back scratch, kept between frames.
+  std::vector<std::uint32_t> read_ids_, read_rows_;
+  std::vector<float> read_counts_;
+  std::vector<std::uint8_t> read_stencil_;
+  std::vector<glm::vec4> read_light_;
 };
 
 }  // namespace shadowvol::gl

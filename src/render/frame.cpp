@@ -65,6 +65,19 @@ Expected<void> check_options(const RenderOptions& options) {
   return {};
 }
 
+Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
+  if (auto ok = check_options(options); !ok) return ok;
+  for (const SceneLight& light : scene.lights)
+    if (auto ok = check_light(light.position); !ok)
+      return make_error("scene " + scene.name + ": " + ok.error().message);
+  if (options.generator == Generator::standard && has_transparent_casters(scene))
+    return make_error(
+        "generator standard counts only the surfaces that face the light, but scene " + scene.name +
+        " has transparent casters, whose every surface filters the light: use robust, "
+        "multiplicity or auto");
+  return {};
+}
+
 FrameStats& FrameStats::operator+=(const FrameStats& other) {
   ms_depth += other.ms_depth;
   ms_volumes += other.ms_volumes;

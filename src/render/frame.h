@@ -151,5 +151,8 @@ struct Frame : SurfaceLayer {
 
 // Checks an options struct a person filled in: size within the rasterizer's limits.
 Expected<void> check_options(const RenderOptions& options);
+// Checks a frame a person asked for: the options (check_options), every light of the scene
+// (check_light), and a generator that counts every surface of its transparent casters.
+Expected<void> check_frame(const Scene& scene, const RenderOptions& options);
 
 }  // namespace shadowvol

@@ -51,6 +51,9 @@ class FrameBackend {
   virtual Expected<void> supports(const RenderOptions& options) const = 0;
   // Whether it counts the volumes of the VolumeCache (else it builds them as it counts).
   virtual bool counts_cpu_volumes() const = 0;
+  // Whether it counts its work into FrameStats's depth, counts and split_sampling (the
+  // rasterizer's counters, the papers' fill measures).
+  virtual bool counts_work() const { return false; }
   // Whether a frame can stay on the device and be shown there (present).
   virtual bool can_present() const { return false; }
   // Waits for the work given so far to end, so that a time taken after it is the work's own.

@@ -9,9 +9,9 @@
 #include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/shapes.h"
 #include "core/volume.h"
 #include "scene/mesh_io.h"
-#include "core/shapes.h"
 
 namespace shadowvol {
 namespace {
@@ -313,6 +313,23 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
     }
   }
   return scene;
+}
+
+Expected<LoadedScene> load_scene(const std::string& name) {
+  auto builtin = builtin_scene(name);
+  if (builtin) return LoadedScene{std::move(*builtin), {}};
+  std::error_code ec;
+  if (!std::filesystem::exists(name, ec)) return builtin.error();  // lists the built-in names
+  if (std::filesystem::path(name).extension() == ".json") {
+    auto scene = load_scene_file(name);
+    if (!scene) return scene.error();
+    return LoadedScene{std::move(*scene), {}};
+  }
+  auto loaded = load_mesh(name);
+  if (!loaded) return loaded.error();
+  return LoadedScene{
+      default_stage(std::filesystem::path(name).filename().string(), std::move(loaded->mesh)),
+      std::move(loaded->warnings)};
 }
 
 }  // namespace shadowvol

@@ -1,11 +1,14 @@
-// shadowvol scene: scene files (JSON), read into a Scene. Format: docs/scenes.md.
+// shadowvol scene: scenes by what a person names them, and scene files (JSON), read into a Scene.
+// Format: docs/scenes.md.
 //
-// Owns: parsing and checking a scene file. Every bad or missing value is refused with the file
-// and the key path (`scene.json: objects[2].transform.scale: ...`); mesh files named in it are
-// loaded relative to the scene file's folder.
+// Owns: finding a scene by name, file or mesh; parsing and checking a scene file. Every bad or
+// missing value is refused with the file and the key path (`scene.json: objects[2].transform.scale:
+// ...`); mesh files named in it are loaded relative to the scene file's folder.
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "core/expected.h"
 #include "scene/scene.h"
@@ -13,5 +16,14 @@
 namespace shadowvol {
 
 Expected<Scene> load_scene_file(const std::filesystem::path& path);
+
+struct LoadedScene {
+  Scene scene;
+  std::vector<std::string> warnings;  // what reading a mesh file passed over (mesh_io.h)
+};
+// A built-in scene by name (builtin_scene), else a scene file (.json) or a mesh file that exists
+// (any format mesh_io reads), the mesh on default_stage under its file name. An unknown name
+// that names no file is refused with the built-in names listed.
+Expected<LoadedScene> load_scene(const std::string& name);
 
 }  // namespace shadowvol

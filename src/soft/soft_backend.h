@@ -35,6 +35,7 @@ class SoftBackend final : public FrameBackend {
   std::string_view name() const override { return "soft"; }
   Expected<void> supports(const RenderOptions&) const override { return {}; }
   bool counts_cpu_volumes() const override { return true; }
+  bool counts_work() const override { return true; }
 
   void begin_frame(const FrameInputs& inputs) override;
   void depth_pass(Layer layer) override;

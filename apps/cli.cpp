@@ -1,0 +1,140 @@
+#include "cli.h"
+
+#include <charconv>
+#include <iostream>
+
+#include <unistd.h>
+
+#include "scene/scene_io.h"
+
+namespace shadowvol::cli {
+
+int fail(const std::string& message) {
+  std::cerr << "shadowvol: error: " << message << "\n";
+  return 1;
+}
+
+void warn(const std::string& message) { std::cerr << "shadowvol: warning: " << message << "\n"; }
+
+StatusLine::StatusLine() : enabled_(isatty(STDERR_FILENO) == 1) {}
+
+void StatusLine::show(const std::string& text) {
+  if (enabled_) std::cerr << "\r\033[K" << text << std::flush;
+}
+
+Expected<std::pair<int, int>> parse_size(const std::string& text) {
+  int w = 0, h = 0;
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, w);
+  if (ec == std::errc() && p != end && (*p == 'x' || *p == 'X')) {
+    auto [q, ec2] = std::from_chars(p + 1, end, h);
+    if (ec2 == std::errc() && q == end) return std::pair{w, h};
+  }
+  return make_error("--size: '" + text + "' is not WIDTHxHEIGHT, e.g. 1280x720");
+}
+
+void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
+  std::string scenes;
+  for (std::string_view n : builtin_scene_names())
+    scenes += (scenes.empty() ? "" : ", ") + std::string(n);
+  cmd->add_option("--scene", args.scene,
+                  "A built-in scene (" + scenes + "), a scene file (.json) or a mesh file")
+      ->capture_default_str();
+  cmd->add_option("--method", args.method,
+                  "zpass, zfail, auto (per object); soft backend only: spsv (per tile, by a split "
+                  "plane) or zp+db (z-pass with the ZP+ near-plane pre-fill)")
+      ->capture_default_str();
+  cmd->add_option("--generator", args.generator, "standard, robust, multiplicity or auto")
+      ->capture_default_str();
+  cmd->add_option("--extrusion", args.extrusion,
+                  "infinite (volumes to w = 0) or bounded (ended on a plane just beyond the "
+                  "scene, closed by dark caps: less to rasterize)")
+      ->capture_default_str();
+  cmd->add_option("--split-planes", args.split_planes,
+                  "spsv: laine (Laine 2005's Point-Camera-Light / Point-Point-Light, flat for "
+                  "flat objects) or sampled (that plane and 39 others, the cheapest on a sample "
+                  "of each volume's tiles)")
+      ->capture_default_str();
+  cmd->add_option("--split-parts", args.split_parts,
+                  "spsv: each (a split plane for each connected part of a caster, up to " +
+                      std::to_string(kMaxSplitParts) +
+                      " parts, as Laine 2005 sec. 6 decomposes casters) or whole (one plane per "
+                      "object)")
+      ->capture_default_str();
+  cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  if (with_backend)
+    cmd->add_option("--backend", args.backend,
+                    "soft (CPU rasterizer), gl (OpenGL 4.5, headless) or auto (gl if a context "
+                    "can be made and draws the method, else soft)")
+        ->capture_default_str();
+  cmd->add_option("--volumes", args.volumes,
+                  "gl: volumes built on the cpu (any generator) or in a geometry shader on the gpu "
+                  "(standard or robust)")
+      ->capture_default_str();
+  cmd->add_option("--counts", args.counts,
+                  "gl: count volumes in the stencil buffer (weights other than +-1 drawn "
+                  "|weight| times), an additive R32F target, or auto (stencil where all weights "
+                  "are +-1)")
+      ->capture_default_str();
+}
+
+namespace {
+
+// `value` parsed by `parse`, or the error prefixed by the option's name.
+template <class Parse>
+auto parsed(const char* option, const std::string& value, Parse&& parse) -> decltype(parse(value)) {
+  auto result = parse(value);
+  if (!result) return make_error(std::string(option) + ": " + result.error().message);
+  return result;
+}
+
+}  // namespace
+
+Expected<ResolvedFrame> resolve(const FrameArgs& args) {
+  auto loaded = load_scene(args.scene);
+  if (!loaded) return loaded.error();
+  for (const std::string& w : loaded->warnings) warn(w);
+  auto method = parsed("--method", args.method, parse_method);
+  if (!method) return method.error();
+  auto generator = parsed("--generator", args.generator, parse_generator);
+  if (!generator) return generator.error();
+  auto size = parse_size(args.size);
+  if (!size) return size.error();
+  auto extrusion = parsed("--extrusion", args.extrusion, parse_extrusion);
+  if (!extrusion) return extrusion.error();
+  auto split_planes = parsed("--split-planes", args.split_planes, parse_split_planes);
+  if (!split_planes) return split_planes.error();
+  auto split_parts = parsed("--split-parts", args.split_parts, parse_split_parts);
+  if (!split_parts) return split_parts.error();
+  auto backend = parsed("--backend", args.backend, parse_backend);
+  if (!backend) return backend.error();
+  auto volumes = parsed("--volumes", args.volumes, gl::parse_volume_path);
+  if (!volumes) return volumes.error();
+  auto counts = parsed("--counts", args.counts, gl::parse_count_target);
+  if (!counts) return counts.error();
+  RenderOptions options{size->first, size->second, *method, *generator, *extrusion};
+  options.split_planes = *split_planes;
+  options.split_parts = *split_parts;
+  if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
+  if (auto ok = check_frame(loaded->scene, options); !ok) return ok.error();
+  return ResolvedFrame{std::move(loaded->scene), options, *backend, {*volumes, *counts}};
+}
+
+Expected<std::unique_ptr<Renderer>> make_frame_renderer(const ResolvedFrame& frame,
+                                                        const RenderOptions& options) {
+  auto made = make_renderer(frame.backend, frame.gl, options);
+  if (!made) return made.error();
+  if (!made->note.empty()) std::cerr << "shadowvol: " << made->note << "\n";
+  return std::move(made->renderer);
+}
+
+std::string method_label(const RenderOptions& options) {
+  const bool split = options.method == Method::split_plane;
+  const bool laine = split && options.split_planes == SplitPlanes::laine;
+  const bool whole = split && options.split_parts == SplitParts::whole;
+  return std::string(to_string(options.method)) + (laine ? " (Laine's planes)" : "") +
+         (whole ? " (one plane per object)" : "") +
+         (options.extrusion == Extrusion::bounded ? " (bounded)" : "");
+}
+
+}  // namespace shadowvol::cli

@@ -1,0 +1,170 @@
+// shadowvol bench: frame times of scenes on a backend (the library's timing harness,
+// render/frame_timing.h), or a measurement suite (bench_suite.h).
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bench_suite.h"
+#include "cli.h"
+#include "render/frame_json.h"
+#include "render/frame_timing.h"
+
+namespace shadowvol::cli {
+namespace {
+
+struct BenchArgs {
+  FrameArgs frame{"demo", "auto", "auto", "1920x1080"};
+  std::vector<std::string> scenes;
+  int frames = 10;
+  std::string json_file, suite, csv, plot;
+  CLI::App* cmd = nullptr;
+  CLI::Option* json = nullptr;
+  bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
+};
+
+// The scene with every caster made opaque: what transparency costs is measured against it.
+Scene all_opaque(Scene scene) {
+  for (SceneObject& object : scene.objects) object.material.opacity = 1.0f;
+  return scene;
+}
+
+// Frame times of scenes on one backend: the mean over `frames` frames after one warm-up frame
+// (which builds volumes and compiles shaders), per stage. A scene with transparent casters is
+// also drawn all opaque, frame for frame in turn, for the ratio of their frame times.
+int bench(const BenchArgs& args) {
+  if (args.frames < 1)
+    return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
+  std::unique_ptr<Renderer> renderer, opaque_renderer;
+  nlohmann::json out = nlohmann::json::array();
+  const bool json = args.json->count() > 0;
+  StatusLine status;
+  for (const std::string& name : args.scenes) {
+    FrameArgs frame = args.frame;
+    frame.scene = name;
+    auto resolved = resolve(frame);
+    if (!resolved) return fail(resolved.error().message);
+    const RenderOptions& options = resolved->options;
+    // Each renderer is made once and keeps its volumes and buffers from scene to scene; the
+    // opaque twin has one of its own.
+    for (std::unique_ptr<Renderer>* r : {&renderer, &opaque_renderer}) {
+      if (*r || (r == &opaque_renderer && !has_transparent_casters(resolved->scene))) continue;
+      auto made = make_frame_renderer(*resolved, options);
+      if (!made) return fail(made.error().message);
+      *r = std::move(*made);
+    }
+    const bool glass = has_transparent_casters(resolved->scene);
+    const Scene opaque = all_opaque(resolved->scene);
+    std::vector<TimedRenderer> timed{{*renderer, resolved->scene}};
+    if (glass) timed.push_back({*opaque_renderer, opaque});
+    const std::vector<FrameTiming> t =
+        time_frames(timed, options, args.frames, [&](int done, int of) {
+          status.show(resolved->scene.name + ": frame " + std::to_string(done + 1) + " of " +
+                      std::to_string(of));
+        });
+    status.clear();
+    const FrameStats& sum = t[0].total;
+    const double n = args.frames;
+    const std::string backend(renderer->backend_name());
+    nlohmann::json row = to_json(options);
+    row.update({{"scene", resolved->scene.name},
+                {"backend", backend},
+                {"volumes", frame.volumes},
+                {"frames", args.frames},
+                {"frame_ms", t[0].frame_ms},
+                {"depth_ms", sum.ms_depth / n},
+                {"volumes_ms", sum.ms_volumes / n},
+                {"counts_ms", sum.ms_counts / n},
+                {"shade_ms", sum.ms_shade / n},
+                {"readback_ms", sum.ms_readback / n},
+                {"volume_primitives", sum.volume_primitives / args.frames}});
+    if (glass) {
+      row["all_opaque_frame_ms"] = t[1].frame_ms;
+      row["transparent_over_opaque"] = t[0].frame_ms / t[1].frame_ms;
+    }
+    if (renderer->backend().counts_work()) {  // the rasterizer's work, per frame
+      row["count_pass"] = to_json(sum.counts, args.frames);
+      row["split_sampling"] = to_json(sum.split_sampling, args.frames);
+    }
+    if (json) {
+      out.push_back(row);
+      continue;
+    }
+    std::printf(
+        "%-16s %s %dx%d: %7.2f ms a frame (depth %.2f, volumes %.2f, counts %.2f, shade %.2f, "
+        "read-back %.2f)\n",
+        resolved->scene.name.c_str(), backend.c_str(), options.width, options.height, t[0].frame_ms,
+        sum.ms_depth / n, sum.ms_volumes / n, sum.ms_counts / n, sum.ms_shade / n,
+        sum.ms_readback / n);
+    if (glass)
+      std::printf("%-16s %s %dx%d: %7.2f ms a frame all opaque: transparency costs %.2fx\n", "",
+                  backend.c_str(), options.width, options.height, t[1].frame_ms,
+                  t[0].frame_ms / t[1].frame_ms);
+  }
+  if (json) std::cout << out.dump(2) << "\n";
+  return 0;
+}
+
+int suite(const BenchArgs& args) {
+  if (args.suite.empty())
+    return fail(std::string(args.csv.empty() ? "--plot" : "--csv") + " needs --suite spsv");
+  if (args.suite != "spsv")
+    return fail("--suite: unknown suite '" + args.suite + "': expected spsv");
+  SuiteOptions suite{args.frames, 1024, 768, args.json_file, args.csv, args.plot};
+  if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
+  if (args.given("--size")) {
+    auto size = parse_size(args.frame.size);
+    if (!size) return fail(size.error().message);
+    suite.width = size->first, suite.height = size->second;
+    if (auto ok = check_options({suite.width, suite.height}); !ok)
+      return fail("--size: " + ok.error().message);
+  }
+  if (args.given("--extrusion")) {
+    auto extrusion = parse_extrusion(args.frame.extrusion);
+    if (!extrusion) return fail("--extrusion: " + extrusion.error().message);
+    suite.extrusion = *extrusion;
+  }
+  return run_spsv_suite(suite);
+}
+
+int run(const BenchArgs& args) {
+  if (!args.suite.empty() || !args.csv.empty() || !args.plot.empty()) return suite(args);
+  if (!args.json_file.empty())
+    return fail("--json " + args.json_file + ": a file is for --suite; without it --json prints");
+  return bench(args);
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<BenchArgs>();
+  for (std::string_view n : builtin_scene_names()) args->scenes.emplace_back(n);
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Time frames of scenes on a backend: the mean per stage over --frames frames");
+  args->cmd = cmd;
+  add_frame_options(cmd, args->frame);
+  cmd->remove_option(cmd->get_option("--scene"));
+  cmd->add_option("--scenes", args->scenes, "Scenes to time (names, .json files or meshes)")
+      ->capture_default_str();
+  cmd->add_option("--frames", args->frames, "Frames to time per scene, after one warm-up")
+      ->capture_default_str();
+  args->json = cmd->add_option("--json", args->json_file,
+                               "Print one JSON array (with --suite: write the suite's JSON to "
+                               "this file, - for standard output)")
+                   ->expected(0, 1);
+  cmd->add_option("--suite", args->suite,
+                  "Run a measurement suite instead: spsv (Laine 2005's counters over the animated "
+                  "knight, knights16, tree and tree-decomposed, with zp+db, zf+db, spsv, "
+                  "spsv-laine and spsv-whole; 1024x768 unless --size)");
+  cmd->add_option("--csv", args->csv,
+                  "With --suite: write one row per scene, method and frame to this file");
+  cmd->add_option("--plot", args->plot,
+                  "With --suite: draw every counter's per-frame series, per scene and method, to "
+                  "this PNG");
+  cmd->callback([args, &exit_code] { exit_code = run(*args); });
+}
+
+}  // namespace shadowvol::cli

@@ -1,0 +1,115 @@
+// shadowvol render: a scene with exact shadows to a PNG, and optionally the pictures of what the
+// passes did (the count passes' work per tile, the light that reaches each surface).
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "cli.h"
+#include "image_file.h"
+#include "render/heatmap.h"
+#include "render/light_map.h"
+
+namespace shadowvol::cli {
+namespace {
+
+struct RenderArgs {
+  FrameArgs frame{"demo", "auto", "auto", "960x540"};
+  std::string out = "shadowvol.png";
+  bool stats = false;
+  bool show_volumes = false;
+  int frames = 1;
+  std::string heatmap;    // PNG of the count passes' work per tile; soft backend
+  std::string light_map;  // PNG of the light that reaches each surface
+};
+
+void print_stats(const FrameStats& s, bool counts_work) {
+  std::printf(
+      "  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms, read-back %.1f ms\n",
+      s.ms_depth, s.ms_volumes, s.ms_counts, s.ms_shade, s.ms_readback);
+  std::printf(
+      "  %zu triangles, %zu volume primitives, objects by z-pass %d, by z-fail %d, by a split "
+      "plane %d, volumes built %d, reused %d\n",
+      s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
+      s.volumes_built, s.volumes_reused);
+  using ull = unsigned long long;
+  if (counts_work)
+    std::printf(
+        "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
+        "or depth bounds, %llu pixels processed, %llu count updates\n",
+        ull(s.counts.triangles_in), ull(s.counts.triangles_clipped), ull(s.counts.tiles_touched),
+        ull(s.counts.tiles_skipped), ull(s.counts.pixels_processed), ull(s.counts.count_updates));
+  if (s.split_sampling.triangles_in > 0)
+    std::printf(
+        "  split-plane sampling: %llu triangles in, %llu tiles touched, %llu skipped, %llu "
+        "samples processed, %llu counted\n",
+        ull(s.split_sampling.triangles_in), ull(s.split_sampling.tiles_touched),
+        ull(s.split_sampling.tiles_skipped), ull(s.split_sampling.pixels_processed),
+        ull(s.split_sampling.count_updates));
+}
+
+int run(const RenderArgs& args) {
+  if (args.frames < 1)
+    return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
+  auto resolved = resolve(args.frame);
+  if (!resolved) return fail(resolved.error().message);
+  const Scene& scene = resolved->scene;
+  RenderOptions options = resolved->options;
+  options.show_volumes = args.show_volumes;
+  options.tile_work = !args.heatmap.empty();
+  auto renderer = make_frame_renderer(*resolved, options);
+  if (!renderer) return fail(renderer.error().message);
+
+  Frame frame;
+  StatusLine status;
+  for (int i = 0; i < args.frames; ++i) {
+    if (args.frames > 1)
+      status.show("frame " + std::to_string(i + 1) + " of " + std::to_string(args.frames));
+    (*renderer)->render(scene_at_frame(scene, i), options, frame);
+  }
+  status.clear();
+  if (auto ok = write_png(args.out, frame.image); !ok) return fail(ok.error().message);
+  std::cout << "wrote " << args.out << " (" << scene.name << ", " << frame.image.width << "x"
+            << frame.image.height << ", " << method_label(options) << ", "
+            << (*renderer)->backend_name() << ")\n";
+  if (options.tile_work) {
+    const Heatmap map = tile_work_heatmap(frame);
+    if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
+    std::printf(
+        "wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
+        "per pixel)\n",
+        args.heatmap.c_str(), map.passes_at_top);
+  }
+  if (!args.light_map.empty()) {
+    const Image map = light_map_image(scene_at_frame(scene, args.frames - 1), frame);
+    if (auto ok = write_png(args.light_map, map); !ok) return fail(ok.error().message);
+    std::printf("wrote %s (the light that reaches each surface, all lights at full = white)\n",
+                args.light_map.c_str());
+  }
+  if (args.stats) print_stats(frame.stats, (*renderer)->backend().counts_work());
+  return 0;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene with exact shadows to a PNG");
+  add_frame_options(cmd, args->frame);
+  cmd->add_option("--out", args->out, "PNG file to write")->capture_default_str();
+  cmd->add_flag("--stats", args->stats, "Print the frame's timings and counters");
+  cmd->add_flag("--show-volumes", args->show_volumes,
+                "Draw the shadow volumes' edges over the image (one colour per light)");
+  cmd->add_option("--heatmap", args->heatmap,
+                  "Also write a PNG of the count passes' work per 8x8 tile: pixels processed and "
+                  "pixels updated, over the scene (soft backend)");
+  cmd->add_option("--light-map", args->light_map,
+                  "Also write a PNG of the light intensity map: the light that reaches each "
+                  "surface through the casters (coloured where they are transparent)");
+  cmd->add_option("--frames", args->frames,
+                  "Render frames 0 .. N-1 of the scene's animation; write the last")
+      ->capture_default_str();
+  cmd->callback([args, &exit_code] { exit_code = run(*args); });
+}
+
+}  // namespace shadowvol::cli

@@ -1,0 +1,90 @@
+// shadowvol verify: a frame against the ray-traced reference, per pixel.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "image_file.h"
+#include "render/frame_json.h"
+#include "trace/reference.h"
+#include "verify/verify.h"
+
+namespace shadowvol::cli {
+namespace {
+
+struct VerifyArgs {
+  FrameArgs frame{"demo", "auto", "auto", "480x270"};
+  std::string diff;
+  bool json = false;
+  int frame_number = 0;
+};
+
+int run(const VerifyArgs& args) {
+  auto resolved = resolve(args.frame);
+  if (!resolved) return fail(resolved.error().message);
+  const RenderOptions& options = resolved->options;
+  if (args.frame_number < 0)
+    return fail("--frame: " + std::to_string(args.frame_number) + " is not a frame number");
+  const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
+  auto renderer = make_frame_renderer(*resolved, options);
+  if (!renderer) return fail(renderer.error().message);
+  const std::string backend((*renderer)->backend_name());
+  const Frame frame = (*renderer)->render(scene, options);
+  auto reference = trace_reference(scene, options.width, options.height);
+  if (!reference) return fail(reference.error().message);
+  const Comparison c = compare(frame, *reference);
+  const bool glass = has_transparent_casters(scene);
+  if (c.pixels_compared == 0)  // a comparison of nothing proves nothing
+    return fail(
+        "nothing to compare: no visible surface faces a light (check the camera and the "
+        "lights of " +
+        scene.name + ")");
+  if (!args.diff.empty())
+    if (auto ok = write_png(args.diff, diff_image(frame, c)); !ok) return fail(ok.error().message);
+  if (args.json) {
+    nlohmann::json out = to_json(options);
+    out.update({{"scene", scene.name},
+                {"backend", backend},
+                {"frame", args.frame_number},
+                {"pixels_compared", c.pixels_compared},
+                {"mismatched", c.mismatched},
+                {"mismatched_outside_band", c.mismatched_outside_band},
+                {"transparent_casters", glass},
+                {"max_light_error", c.max_light_error},
+                {"max_light_error_outside_band", c.max_light_error_outside_band}});
+    std::cout << out.dump(2) << "\n";
+  } else {
+    char light[160] = "";
+    if (glass)
+      std::snprintf(light, sizeof light,
+                    "; light through transparent casters off by at most %.2g outside the band "
+                    "(%.2g allowed; %.2g within it)",
+                    c.max_light_error_outside_band, kLightTolerance, c.max_light_error);
+    std::printf(
+        "%s, %s, %s backend, %dx%d: %zu pixels compared, %zu mismatched, %zu outside the "
+        "one-pixel band%s: %s\n",
+        scene.name.c_str(), method_label(options).c_str(), backend.c_str(), options.width,
+        options.height, c.pixels_compared, c.mismatched, c.mismatched_outside_band, light,
+        c.mismatched_outside_band == 0 ? "matches the reference" : "DIFFERS from the reference");
+  }
+  return c.mismatched_outside_band == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+void add_verify_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<VerifyArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "verify", "Render a scene and compare its shadows per pixel with the ray-traced reference");
+  add_frame_options(cmd, args->frame);
+  cmd->add_option("--diff", args->diff, "Write the mismatches over the scene to this PNG");
+  cmd->add_flag("--json", args->json, "Print one JSON object");
+  cmd->add_option("--frame", args->frame_number, "Verify this frame of the scene's animation")
+      ->capture_default_str();
+  cmd->callback([args, &exit_code] { exit_code = run(*args); });
+}
+
+}  // namespace shadowvol::cli

@@ -1,0 +1,25 @@
+#include "render/frame_json.h"
+
+#include <string>
+
+namespace shadowvol {
+
+nlohmann::json to_json(const RenderOptions& options) {
+  return {{"width", options.width},
+          {"height", options.height},
+          {"method", std::string(to_string(options.method))},
+          {"generator", std::string(to_string(options.generator))},
+          {"extrusion", std::string(to_string(options.extrusion))},
+          {"split_planes", std::string(to_string(options.split_planes))},
+          {"split_parts", std::string(to_string(options.split_parts))}};
+}
+
+nlohmann::json to_json(const raster::Counters& c, std::uint64_t per) {
+  return {{"triangles", c.triangles_in / per},
+          {"tiles_touched", c.tiles_touched / per},
+          {"tiles_skipped", c.tiles_skipped / per},
+          {"pixels_processed", c.pixels_processed / per},
+          {"count_updates", c.count_updates / per}};
+}
+
+}  // namespace shadowvol
