@@ -1,5 +1,6 @@
 // shadowvol raster: the software rasterizer's triangle stage (setup -> raster), its buffers and
-// counters. Depends on glm and oneTBB only; knows nothing of meshes, scenes or shadow volumes.
+// counters. Depends on glm, oneTBB and core's polygon clipper only; knows nothing of meshes, scenes
+// or shadow volumes.
 //
 // Owns: clipping in homogeneous space, snapping to a fixed-point grid, exact edge functions
 // with a top-left fill rule, the per-pixel depth and signed-count buffers, the per-tile depth

@@ -1,6 +1,7 @@
 #include "render/frame.h"
 
 #include <algorithm>
+#include <initializer_list>
 
 #include <string>
 
@@ -79,25 +80,18 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
 }
 
 FrameStats& FrameStats::operator+=(const FrameStats& other) {
-  ms_depth += other.ms_depth;
-  ms_volumes += other.ms_volumes;
-  ms_counts += other.ms_counts;
-  ms_shade += other.ms_shade;
-  ms_readback += other.ms_readback;
-  triangles += other.triangles;
-  volume_primitives += other.volume_primitives;
-  objects_zpass += other.objects_zpass;
-  objects_zfail += other.objects_zfail;
-  objects_split += other.objects_split;
+  using S = FrameStats;
+  for (double S::*ms : {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback})
+    this->*ms += other.*ms;
+  for (std::size_t S::*n : {&S::triangles, &S::volume_primitives}) this->*n += other.*n;
+  for (int S::*n : {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::volumes_built,
+                    &S::volumes_reused})
+    this->*n += other.*n;
+  for (raster::Counters S::*c : {&S::depth, &S::counts, &S::split_sampling}) this->*c += other.*c;
   if (zfail_lights.size() < other.zfail_lights.size())
     zfail_lights.resize(other.zfail_lights.size());
   for (std::size_t o = 0; o < other.zfail_lights.size(); ++o)
     zfail_lights[o] += other.zfail_lights[o];
-  volumes_built += other.volumes_built;
-  volumes_reused += other.volumes_reused;
-  depth += other.depth;
-  counts += other.counts;
-  split_sampling += other.split_sampling;
   return *this;
 }
 

@@ -15,6 +15,10 @@ namespace {
 std::atomic<long> allocations{0};
 }  // namespace
 
+// GCC sees these deletes free what the replaced new returned and, not knowing that new is
+// malloc here, warns of a mismatch; the pair below is matched by construction.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
 void* operator new(std::size_t size) {
   allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
