@@ -787,7 +787,6 @@ void GlBackend::read_image(Image& image) {
   image.height = h;
   image.rgba.resize(pixels * 4);
   std::memcpy(image.rgba.data(), rows.data(), pixels * 4);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
 }
 
 void GlBackend::present() {

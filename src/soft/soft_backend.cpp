@@ -7,6 +7,7 @@
 #include <memory>
 #include <span>
 #include <tuple>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <glm/exponential.hpp>
@@ -103,11 +104,14 @@ void SoftBackend::depth_pass(Layer layer) {
 
 void SoftBackend::read_ids(Layer, SurfaceLayer& out) {
   const std::size_t pixels = target_.id.size();
-  out.object.assign(pixels, -1);
-  out.face.assign(pixels, 0);
-  for (std::size_t p = 0; p < pixels; ++p)
-    if (target_.id[p] != raster::Target::kNoId)
-      std::tie(out.object[p], out.face[p]) = in_->plan.object_of(target_.id[p]);
+  out.object.resize(pixels);
+  out.face.resize(pixels);
+  tbb::parallel_for(std::size_t{0}, pixels, [&](std::size_t p) {
+    const std::uint32_t id = target_.id[p];
+    std::tie(out.object[p], out.face[p]) =
+        id == raster::Target::kNoId ? std::pair<std::int32_t, std::uint32_t>{-1, 0}
+                                    : in_->plan.object_of(id);
+  });
 }
 
 void SoftBackend::begin_light_map(std::size_t) {
