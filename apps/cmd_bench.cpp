@@ -68,7 +68,7 @@ int bench(const BenchArgs& args) {
     status.clear();
     const FrameStats& sum = t[0].total;
     const double n = args.frames;
-    const std::string backend(renderer->backend_name());
+    const std::string backend(renderer->backend().name());
     nlohmann::json row = to_json(options);
     row.update({{"scene", resolved->scene.name},
                 {"backend", backend},

@@ -71,7 +71,7 @@ int run(const RenderArgs& args) {
   if (auto ok = write_png(args.out, frame.image); !ok) return fail(ok.error().message);
   std::cout << "wrote " << args.out << " (" << scene.name << ", " << frame.image.width << "x"
             << frame.image.height << ", " << method_label(options) << ", "
-            << (*renderer)->backend_name() << ")\n";
+            << (*renderer)->backend().name() << ")\n";
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
     if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);

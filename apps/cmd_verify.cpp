@@ -31,7 +31,7 @@ int run(const VerifyArgs& args) {
   const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
   auto renderer = make_frame_renderer(*resolved, options);
   if (!renderer) return fail(renderer.error().message);
-  const std::string backend((*renderer)->backend_name());
+  const std::string backend((*renderer)->backend().name());
   const Frame frame = (*renderer)->render(scene, options);
   auto reference = trace_reference(scene, options.width, options.height);
   if (!reference) return fail(reference.error().message);

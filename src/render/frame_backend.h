@@ -37,9 +37,6 @@ struct FrameInputs {
   // counts CPU volumes, or options.show_volumes asks for them).
   const VolumeCache& volumes;
   Frame& frame;
-  // Whether the read verbs are called: false for a frame that stays on the device to be shown
-  // there (Renderer::present).
-  bool read_back;
 };
 
 class FrameBackend {
@@ -96,7 +93,7 @@ class FrameBackend {
   virtual void shade() = 0;
   // The sRGB image into frame.image.
   virtual void read_image(Image& image) = 0;
-  // Shows the last frame drawn with read_back false (can_present).
+  // Shows the last frame drawn without read-back (Renderer::present; can_present).
   virtual void present() {}
 };
 

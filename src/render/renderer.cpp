@@ -68,7 +68,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   plan_frame(scene, options, plan_, stats);
   // A backend whose targets are memory fills the frame whatever is asked.
   read_back = read_back || !backend_->can_present();
-  const FrameInputs in{scene, options, plan_, volumes_, frame, read_back};
+  const FrameInputs in{scene, options, plan_, volumes_, frame};
   const std::size_t pixels = static_cast<std::size_t>(options.width) * options.height;
   const std::size_t lights = scene.lights.size();
   const bool glass = plan_.has_glass();
@@ -85,7 +85,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
       timed(*backend_, stats.ms_readback, [&] { backend_->read_ids(layer, out); });
       size_layer(out, lights, pixels, glass);
     }
-    for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out);
+    for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out, read_back);
   };
   draw_layer(Layer::opaque, frame);
   if (glass) {
@@ -104,7 +104,8 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   }
 }
 
-void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, SurfaceLayer& out) {
+void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, SurfaceLayer& out,
+                           bool read_back) {
   FrameStats& stats = in.frame.stats;
   const bool cpu = backend_->counts_cpu_volumes();
   timed(*backend_, stats.ms_volumes, [&] {
@@ -122,7 +123,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
       if (!plan_.transparent(o)) count(o);
     backend_->end_counts();
   });
-  if (in.read_back) timed(*backend_, stats.ms_readback, [&] { backend_->read_mask(l, out); });
+  if (read_back) timed(*backend_, stats.ms_readback, [&] { backend_->read_mask(l, out); });
   // The transparent casters' light intensity map (Kim et al. Eq. 3), a group of one material at
   // a time: each count adds the group's log transmittance.
   if (plan_.has_glass()) {
@@ -134,8 +135,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
       }
       backend_->end_counts();
     });
-    if (in.read_back)
-      timed(*backend_, stats.ms_readback, [&] { backend_->read_light_map(l, out); });
+    if (read_back) timed(*backend_, stats.ms_readback, [&] { backend_->read_light_map(l, out); });
   }
   timed(*backend_, stats.ms_shade, [&] { backend_->light_pass(l, layer); });
 }

@@ -14,7 +14,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <string_view>
 #include <vector>
 
 #include "render/frame.h"
@@ -39,15 +38,15 @@ class Renderer {
   // stats). Needs backend().can_present().
   void present(const Scene& scene, const RenderOptions& options, Frame& frame);
 
-  // "soft" or "gl".
-  std::string_view backend_name() const { return backend_->name(); }
   FrameBackend& backend() { return *backend_; }
   const FrameBackend& backend() const { return *backend_; }
 
  private:
   void draw(const Scene& scene, const RenderOptions& options, Frame& frame, bool read_back);
-  // Per light, the layer's shadows and light against the depth target as it stands.
-  void light_layer(const FrameInputs& in, std::size_t light, Layer layer, SurfaceLayer& out);
+  // Per light, the layer's shadows and light against the depth target as it stands; into `out`
+  // where read_back.
+  void light_layer(const FrameInputs& in, std::size_t light, Layer layer, SurfaceLayer& out,
+                   bool read_back);
 
   std::unique_ptr<FrameBackend> backend_;
   FramePlan plan_;

@@ -54,7 +54,7 @@ Frame render(const Variant& variant, const Scene& scene, const RenderOptions& op
   auto made = make_renderer(variant.backend, variant.gl);
   EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
   if (!made) return {};
-  EXPECT_EQ(made->renderer->backend_name(), variant.backend == Backend::soft ? "soft" : "gl");
+  EXPECT_EQ(made->renderer->backend().name(), variant.backend == Backend::soft ? "soft" : "gl");
   return made->renderer->render(scene, options);
 }
 
