@@ -61,6 +61,15 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
                       " parts, as Laine 2005 sec. 6 decomposes casters) or whole (one plane per "
                       "object)")
       ->capture_default_str();
+  cmd->add_option("--cull", args.cull,
+                  "CC shadow volumes' culling of casters whose volumes change no pixel: none, "
+                  "frustum (receivers in the view frustum; casters outside the light's views of "
+                  "them) or occlusion (receivers the image shows; casters in shadow or whose "
+                  "shadow is unseen, tested conservatively in the light's views)")
+      ->capture_default_str();
+  cmd->add_option("--light-view", args.light_view,
+                  "--cull: the side of each light view, in pixels (a cube's faces each)")
+      ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   if (with_backend)
     cmd->add_option("--backend", args.backend,
@@ -106,6 +115,8 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!split_planes) return split_planes.error();
   auto split_parts = parsed("--split-parts", args.split_parts, parse_split_parts);
   if (!split_parts) return split_parts.error();
+  auto cull = parsed("--cull", args.cull, parse_cull);
+  if (!cull) return cull.error();
   auto backend = parsed("--backend", args.backend, parse_backend);
   if (!backend) return backend.error();
   auto volumes = parsed("--volumes", args.volumes, gl::parse_volume_path);
@@ -115,6 +126,11 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   RenderOptions options{size->first, size->second, *method, *generator, *extrusion};
   options.split_planes = *split_planes;
   options.split_parts = *split_parts;
+  options.cull = *cull;
+  options.light_view_size = args.light_view;
+  if (options.light_view_size < kMinLightView || options.light_view_size > kMaxLightView)
+    return make_error("--light-view: " + std::to_string(args.light_view) + " is outside " +
+                      std::to_string(kMinLightView) + " .. " + std::to_string(kMaxLightView));
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   if (auto ok = check_frame(loaded->scene, options); !ok) return ok.error();
   return ResolvedFrame{std::move(loaded->scene), options, *backend, {*volumes, *counts}};
@@ -134,7 +150,9 @@ std::string method_label(const RenderOptions& options) {
   const bool whole = split && options.split_parts == SplitParts::whole;
   return std::string(to_string(options.method)) + (laine ? " (Laine's planes)" : "") +
          (whole ? " (one plane per object)" : "") +
-         (options.extrusion == Extrusion::bounded ? " (bounded)" : "");
+         (options.extrusion == Extrusion::bounded ? " (bounded)" : "") +
+         (options.cull != Cull::none ? " (culled by " + std::string(to_string(options.cull)) + ")"
+                                     : "");
 }
 
 }  // namespace shadowvol::cli

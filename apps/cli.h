@@ -49,6 +49,8 @@ struct FrameArgs {
   std::string extrusion = "infinite";
   std::string split_planes = "sampled";
   std::string split_parts = "each";
+  std::string cull = "none";
+  int light_view = 512;
 };
 // `with_backend`: false for the viewer, which is OpenGL by nature.
 void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend = true);

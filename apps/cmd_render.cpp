@@ -33,6 +33,12 @@ void print_stats(const FrameStats& s, bool counts_work) {
       s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
       s.volumes_built, s.volumes_reused);
   using ull = unsigned long long;
+  if (s.light_views > 0)
+    std::printf(
+        "  culling %.1f ms: %d light views, %llu queries, casters culled in shadow %d, for "
+        "unseen shadows %d\n",
+        s.ms_cull, s.light_views, ull(s.cull_queries), s.casters_culled_in_shadow,
+        s.casters_culled_unseen);
   if (counts_work)
     std::printf(
         "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "

@@ -55,6 +55,7 @@ int run(const VerifyArgs& args) {
                 {"transparent_casters", glass},
                 {"max_light_error", c.max_light_error},
                 {"max_light_error_outside_band", c.max_light_error_outside_band}});
+    out.update(culling_json(frame.stats));
     std::cout << out.dump(2) << "\n";
   } else {
     char light[160] = "";

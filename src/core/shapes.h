@@ -52,6 +52,12 @@ std::vector<Mesh> connected_parts(const Mesh& mesh, bool join_equal_positions = 
 // 900 triangles. Dense and self-shadowing, in the spirit of Laine 2005's KNIGHT.
 Mesh make_knight();
 
+// A robot about 2 units tall, feet on y = 0, facing +z: box feet, tube legs, a box torso with a
+// chest plate, tube arms ending in sphere hands, a sphere head with an antenna, each a closed
+// part, about 1000 triangles. The crowd of CC shadow volumes' robot scene (Lloyd et al. 2004
+// Fig. 6) is made of it.
+Mesh make_robot();
+
 // A tree about 4 units tall, its root at the origin: a trunk and three levels of branches, each
 // a closed tapered tube, and open leaves (single quads) fanned out at the tips of the last
 // level, sharing the tip's centre vertex so that a branch and its leaves form one connected

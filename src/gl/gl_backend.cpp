@@ -506,9 +506,13 @@ void GlBackend::volumes_ready(std::size_t l, const std::vector<std::uint8_t>& re
   if (!cpu_) uploads.clear();  // the cache may change unseen: upload afresh when back on cpu
   uploads.resize(plan.objects.size());
   for (std::size_t o = 0; cpu_ && o < plan.objects.size(); ++o) {
+    const VolumePlan& v = plan.volume(l, o);
+    if (v.culled) {  // not drawn; its cached volume may be stale: uploaded afresh when drawn
+      uploads[o].reset();
+      continue;
+    }
     const bool fresh = !uploads[o];
     if (fresh) uploads[o] = std::make_unique<VolumeUpload>();
-    const VolumePlan& v = plan.volume(l, o);
     const bool zfail = v.rule == VolumeRule::zfail;
     if (fresh || rebuilt[o])
       uploads[o]->upload(in_->volumes.volume(l, o), zfail || v.light_caps_everywhere, zfail);

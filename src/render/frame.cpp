@@ -40,6 +40,14 @@ Expected<Extrusion> parse_extrusion(std::string_view name) {
   return parse_name(name, {Extrusion::infinite, Extrusion::bounded}, "extrusion");
 }
 
+std::string_view to_string(Cull cull) {
+  return cull == Cull::none ? "none" : cull == Cull::frustum ? "frustum" : "occlusion";
+}
+
+Expected<Cull> parse_cull(std::string_view name) {
+  return parse_name(name, {Cull::none, Cull::frustum, Cull::occlusion}, "culling");
+}
+
 std::string_view to_string(SplitPlanes planes) {
   return planes == SplitPlanes::laine ? "laine" : "sampled";
 }
@@ -63,6 +71,10 @@ Expected<void> check_options(const RenderOptions& options) {
                       std::to_string(options.height) + " is outside 1x1 .. " +
                       std::to_string(raster::kMaxViewport) + "x" +
                       std::to_string(raster::kMaxViewport));
+  if (options.light_view_size < kMinLightView || options.light_view_size > kMaxLightView)
+    return make_error("light view size " + std::to_string(options.light_view_size) +
+                      " is outside " + std::to_string(kMinLightView) + " .. " +
+                      std::to_string(kMaxLightView));
   return {};
 }
 
@@ -81,17 +93,22 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
 
 FrameStats& FrameStats::operator+=(const FrameStats& other) {
   using S = FrameStats;
-  for (double S::*ms : {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback})
+  for (double S::*ms : {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback,
+                        &S::ms_cull})
     this->*ms += other.*ms;
+  cull_queries += other.cull_queries;
   for (std::size_t S::*n : {&S::triangles, &S::volume_primitives}) this->*n += other.*n;
   for (int S::*n : {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::volumes_built,
-                    &S::volumes_reused})
+                    &S::volumes_reused, &S::casters_culled_in_shadow, &S::casters_culled_unseen,
+                    &S::light_views})
     this->*n += other.*n;
   for (raster::Counters S::*c : {&S::depth, &S::counts, &S::split_sampling}) this->*c += other.*c;
-  if (zfail_lights.size() < other.zfail_lights.size())
-    zfail_lights.resize(other.zfail_lights.size());
-  for (std::size_t o = 0; o < other.zfail_lights.size(); ++o)
-    zfail_lights[o] += other.zfail_lights[o];
+  for (std::vector<int> S::*per_object : {&S::zfail_lights, &S::culled_lights}) {
+    std::vector<int>& mine = this->*per_object;
+    const std::vector<int>& theirs = other.*per_object;
+    if (mine.size() < theirs.size()) mine.resize(theirs.size());
+    for (std::size_t o = 0; o < theirs.size(); ++o) mine[o] += theirs[o];
+  }
   return *this;
 }
 

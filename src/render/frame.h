@@ -73,6 +73,18 @@ inline constexpr std::size_t kMaxSplitParts = 64;
 std::string_view to_string(SplitParts parts);
 Expected<SplitParts> parse_split_parts(std::string_view name);
 
+// CC shadow volumes' culling (Lloyd, Wendt, Govindaraju and Manocha 2004 §3.1; render/
+// caster_culling.h): no volume is drawn for a caster whose shadow can change no pixel. `frustum`:
+// the receivers are the objects whose box meets the view frustum, and a caster outside every
+// light view fitted to them is culled. `occlusion`: the receivers are the objects the eye's image
+// shows (and the transparent ones in the frustum), and a caster is culled where, in the light's
+// view, every ray to its box is blocked by an opaque surface first (in shadow) or no receiver
+// lies behind it (its shadow is unseen); conservative, so exact (accel/light_views.h).
+enum class Cull : std::uint8_t { none, frustum, occlusion };
+std::string_view to_string(Cull cull);
+inline constexpr int kMinLightView = 16, kMaxLightView = 4096;
+Expected<Cull> parse_cull(std::string_view name);
+
 struct RenderOptions {
   int width = 960;
   int height = 540;
@@ -81,6 +93,9 @@ struct RenderOptions {
   Extrusion extrusion = Extrusion::infinite;
   SplitPlanes split_planes = SplitPlanes::sampled;
   SplitParts split_parts = SplitParts::each;
+  Cull cull = Cull::none;
+  // The side of each light view culling tests in, in pixels (a cube's faces each).
+  int light_view_size = 512;
   // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
   // one colour per light, so that a person can see the volumes.
   bool show_volumes = false;
@@ -106,7 +121,15 @@ struct FrameStats {
   int objects_zpass = 0, objects_zfail = 0;   // over all lights
   int objects_split = 0;                      // over all lights: drawn by a split plane
   std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for
+  std::vector<int> culled_lights;             // per object: lights its volume was culled for
   int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work
+  // Culling (RenderOptions::cull), over all lights: casters culled because they lie in shadow
+  // and because their shadow is unseen, the boxes' queries (one per light view tested in), the
+  // light views made (1, or 6 for a cube), and the time it took.
+  int casters_culled_in_shadow = 0, casters_culled_unseen = 0;
+  std::uint64_t cull_queries = 0;
+  int light_views = 0;
+  double ms_cull = 0;
   raster::Counters depth, counts;
   // Software backend, SplitPlanes::sampled: the split-plane sampler's own drawing (on a target of
   // one pixel per sampled tile), apart from `counts` and from the tile work, since its samples
@@ -149,7 +172,8 @@ struct Frame : SurfaceLayer {
   std::vector<std::vector<raster::TileWork>> object_tile_work;
 };
 
-// Checks an options struct a person filled in: size within the rasterizer's limits.
+// Checks an options struct a person filled in: size within the rasterizer's limits, the light
+// view's within [kMinLightView, kMaxLightView].
 Expected<void> check_options(const RenderOptions& options);
 // Checks a frame a person asked for: the options (check_options), every light of the scene
 // (check_light), and a generator that counts every surface of its transparent casters.

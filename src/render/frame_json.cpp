@@ -11,7 +11,17 @@ nlohmann::json to_json(const RenderOptions& options) {
           {"generator", std::string(to_string(options.generator))},
           {"extrusion", std::string(to_string(options.extrusion))},
           {"split_planes", std::string(to_string(options.split_planes))},
-          {"split_parts", std::string(to_string(options.split_parts))}};
+          {"split_parts", std::string(to_string(options.split_parts))},
+          {"cull", std::string(to_string(options.cull))},
+          {"light_view_size", options.light_view_size}};
+}
+
+nlohmann::json culling_json(const FrameStats& s, int per) {
+  return {{"casters_culled_in_shadow", static_cast<double>(s.casters_culled_in_shadow) / per},
+          {"casters_culled_unseen", static_cast<double>(s.casters_culled_unseen) / per},
+          {"queries", static_cast<double>(s.cull_queries) / per},
+          {"light_views", static_cast<double>(s.light_views) / per},
+          {"cull_ms", s.ms_cull / per}};
 }
 
 nlohmann::json to_json(const raster::Counters& c, std::uint64_t per) {

@@ -122,6 +122,7 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
 
   plan.volumes.resize(lights * objects);
   stats.zfail_lights.assign(objects, 0);
+  stats.culled_lights.assign(objects, 0);
   const glm::mat4 plane_to_clip = glm::transpose(plan.inv_view_proj);  // planes map by M^-T
   const bool prefills =
       options.method == Method::split_plane || options.method == Method::zpass_prefill;
@@ -173,6 +174,7 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
       v.rule = zfail ? VolumeRule::zfail : v.split.empty() ? VolumeRule::zpass : VolumeRule::split;
       v.counts_caps = v.rule != VolumeRule::zpass;
       v.light_caps_everywhere = op.glass_group >= 0;
+      v.culled = false;  // until the culling, after the depth pass
       v.object_light = object_space_light(object, scene.lights[l].position);
       // Planes map from the eye-relative world to the object by the transpose of its model.
       const glm::vec4 object_far_plane =

@@ -84,6 +84,9 @@ struct VolumePlan {
   // What depth_bounds was computed from: a plan reused for the next frame recomputes them only
   // where these changed (each takes a shadow volume of the box).
   std::optional<DepthBoundsInputs> depth_bounds_of;
+  // Culled (RenderOptions::cull, render/caster_culling.h): no pixel's count changes without it,
+  // so it is neither built nor counted.
+  bool culled = false;
   // Under VolumeRule::split: one PartSplit per part of the object (Topology::vertex_part) under
   // SplitParts::each, or one for the whole volume; else empty.
   std::vector<PartSplit> split;

@@ -11,11 +11,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Empties the stats for a new frame, keeping zfail_lights' storage.
+// Empties the stats for a new frame, keeping the per-object lists' storage.
 void reset(FrameStats& stats) {
   std::vector<int> zfail_lights = std::move(stats.zfail_lights);
+  std::vector<int> culled_lights = std::move(stats.culled_lights);
   stats = {};
   stats.zfail_lights = std::move(zfail_lights);
+  stats.culled_lights = std::move(culled_lights);
 }
 
 // Sizes the layer's per-light masks (and light, with transparent casters) in place: a copy
@@ -81,10 +83,14 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
       if (plan_.transparent(o) == (layer == Layer::glass))
         stats.triangles += scene.objects[o].mesh->triangle_count();
-    if (read_back) {
+    // Culling by occlusion takes the opaque layer's ids even for a frame shown on the device.
+    const bool opaque = layer == Layer::opaque;
+    if (read_back || (opaque && options.cull == Cull::occlusion)) {
       timed(*backend_, stats.ms_readback, [&] { backend_->read_ids(layer, out); });
       size_layer(out, lights, pixels, glass);
     }
+    if (opaque && options.cull != Cull::none)
+      timed(*backend_, stats.ms_cull, [&] { culling_.cull(scene, options, plan_, &out, stats); });
     for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out, read_back);
   };
   draw_layer(Layer::opaque, frame);
@@ -113,6 +119,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     backend_->volumes_ready(l, built ? volumes_.update(in.scene, plan_, l, stats) : none_rebuilt_);
   });
   auto count = [&](std::size_t o) {
+    if (plan_.volume(l, o).culled) return;
     if (cpu) stats.volume_primitives += volumes_.volume(l, o).primitive_count();
     backend_->count_volume(l, o);
   };

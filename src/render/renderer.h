@@ -1,7 +1,8 @@
 // shadowvol render: Renderer, the frame pipeline, written once for every backend.
 //
 // Owns: the sequence of a frame and what it keeps between frames (the plan's storage, the CPU
-// volume cache). Per frame: the plan (render/frame_plan.h); the opaque layer's depth pass; per
+// volume cache). Per frame: the plan (render/frame_plan.h); the opaque layer's depth pass; the
+// culling of casters whose volumes change no pixel (render/caster_culling.h); per
 // light its volumes, the opaque casters' counts (the shadow mask), the transparent casters'
 // light intensity map group by group, and the lit pass; with transparent casters, what is seen
 // through them and the glass layer, lit the same way; the colour; read-back. Each step is a verb
@@ -16,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "render/caster_culling.h"
 #include "render/frame.h"
 #include "render/frame_backend.h"
 #include "render/frame_plan.h"
@@ -50,6 +52,7 @@ class Renderer {
 
   std::unique_ptr<FrameBackend> backend_;
   FramePlan plan_;
+  CasterCulling culling_;
   VolumeCache volumes_;
   std::vector<std::uint8_t> none_rebuilt_;  // for a backend that builds its own volumes
 };

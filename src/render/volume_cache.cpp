@@ -13,6 +13,7 @@ const std::vector<std::uint8_t>& VolumeCache::update(const Scene& scene, const F
     const SceneObject& object = scene.objects[o];
     const VolumePlan& v = plan.volume(light, o);
     Entry& c = cache[o];
+    if (v.culled) continue;  // kept as it was: built again if it changed when next drawn
     if (c.topology == object.topology && c.light == v.object_light && c.options == v.build) {
       ++stats.volumes_reused;
       continue;

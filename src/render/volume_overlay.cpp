@@ -39,6 +39,7 @@ void overlay_volumes(Image& image, const Scene& scene, const FramePlan& plan,
   const glm::vec3 colors[] = {{1.0f, 0.9f, 0.1f}, {0.2f, 0.9f, 1.0f}, {1.0f, 0.3f, 0.8f}};
   for (std::size_t l = 0; l < scene.lights.size(); ++l)
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+      if (plan.volume(l, o).culled) continue;
       const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
       const PrimitiveList& sides = volumes.volume(l, o).sides;
       for (std::size_t q = 0; q < sides.size(); ++q) {

@@ -306,6 +306,51 @@ Scene knights16() {
   return s;
 }
 
+// CC shadow volumes' robot scene (Lloyd et al. 2004 §4, Fig. 6): a crowd of 96 robots marching
+// across a large walled room, lit by a low light near one wall behind a row of crates, so that
+// many robots stand in the crates' shadows or those of robots nearer the light: culling's case.
+// About 100k triangles.
+Scene robots() {
+  Scene s;
+  s.name = "robots";
+  constexpr float kRoom = 20.0f;
+  add_ground(s, kRoom);
+  const glm::vec3 wall(0.7f, 0.68f, 0.62f);
+  for (int i = 0; i < 4; ++i) {  // walls 4 units high, 0.4 thick, each an object of its own
+    const bool along_x = i < 2;
+    const float at = i % 2 ? kRoom : -kRoom - 0.4f;
+    const glm::vec3 lo = along_x ? glm::vec3(-kRoom, 0.0f, at) : glm::vec3(at, 0.0f, -kRoom);
+    const glm::vec3 hi = lo + (along_x ? glm::vec3(2.0f * kRoom, 4.0f, 0.4f)
+                                       : glm::vec3(0.4f, 4.0f, 2.0f * kRoom));
+    s.objects.push_back(make_object("wall" + std::to_string(i), make_box(lo, hi), glm::mat4(1.0f),
+                                    wall));
+  }
+  // Crates stacked between the light and the crowd: what stands in their shadow is culled.
+  for (int i = 0; i < 4; ++i)
+    s.objects.push_back(make_object("crate" + std::to_string(i),
+                                    make_box({-1.3f, 0.0f, -1.3f}, {1.3f, 3.2f, 1.3f}),
+                                    place({-11.0f, 0.0f, -9.0f + 6.0f * static_cast<float>(i)},
+                                          10.0f * static_cast<float>(i)),
+                                    {0.55f, 0.42f, 0.3f}));
+  const auto shared = std::make_shared<const Mesh>(make_robot());
+  const auto topology = std::make_shared<const Topology>(build_topology(*shared));
+  for (int i = 0; i < 96; ++i) {
+    const int row = i / 12, column = i % 12;
+    const float x = 2.2f * static_cast<float>(row) - 9.0f + (column % 2 ? 0.5f : 0.0f);
+    const float z = 2.3f * static_cast<float>(column) - 12.6f;
+    const glm::vec3 colour = row % 2 ? glm::vec3(0.75f, 0.55f, 0.3f) : glm::vec3(0.45f, 0.6f, 0.75f);
+    SceneObject robot{"robot" + std::to_string(i), shared, topology,
+                      place({x, 0.0f, z}, 90.0f + 7.0f * static_cast<float>(i % 5)), {colour}, {}};
+    // The crowd marches towards the light, each row at its own pace.
+    robot.animation.move = {-0.04f - 0.01f * static_cast<float>(row % 3), 0.0f, 0.0f};
+    s.objects.push_back(std::move(robot));
+  }
+  s.lights.push_back({{-18.0f, 1.6f, 1.0f, 1.0f}, {1.0f, 0.95f, 0.85f}, 1.0f});
+  // Above every shadow volume, so that z-pass is exact here too.
+  s.camera = {{18.0f, 16.0f, 18.0f}, {-3.0f, 0.0f, -1.0f}};
+  return s;
+}
+
 // `decomposed`: each connected part of the tree (a branch with its leaves) an object of its own,
 // so that each gets its own split plane (Laine 2005 §6).
 Scene tree(bool decomposed) {
@@ -342,6 +387,7 @@ constexpr Builtin kBuiltins[] = {{"demo", demo},
                                  {"glass", glass},
                                  {"knight", knight},
                                  {"knights16", knights16},
+                                 {"robots", robots},
                                  {"tree", tree_whole},
                                  {"tree-decomposed", tree_decomposed}};
 

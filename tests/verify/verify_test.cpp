@@ -35,6 +35,7 @@ struct Variant {
   gl::GlSettings gl;
   SplitPlanes split_planes = SplitPlanes::sampled;  // for Method::split_plane
   SplitParts split_parts = SplitParts::each;        // likewise
+  Cull cull = Cull::none;
 };
 const Variant kSoft{"soft", Backend::soft, {}};
 const Variant kSoftLaine{"soft_laine_planes", Backend::soft, {}, SplitPlanes::laine};
@@ -45,6 +46,17 @@ const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarge
 const Variant kGlAdditive{
     "gl_additive", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::additive}};
 const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlAdditive};
+// CC shadow volumes' culling (render/caster_culling.h) on both backends.
+const Variant kSoftOcclusion{"soft_cull_occlusion", Backend::soft, {}, SplitPlanes::sampled,
+                             SplitParts::each, Cull::occlusion};
+const Variant kSoftFrustum{"soft_cull_frustum", Backend::soft, {}, SplitPlanes::sampled,
+                           SplitParts::each, Cull::frustum};
+const Variant kGlCpuOcclusion{"gl_cpu_cull_occlusion", Backend::gl,
+                              {gl::VolumePath::cpu, gl::CountTarget::automatic},
+                              SplitPlanes::sampled, SplitParts::each, Cull::occlusion};
+const Variant kGlGpuOcclusion{"gl_gpu_cull_occlusion", Backend::gl,
+                              {gl::VolumePath::gpu, gl::CountTarget::automatic},
+                              SplitPlanes::sampled, SplitParts::each, Cull::occlusion};
 void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 }  // namespace
 void PrintTo(Extrusion e, std::ostream* os) { *os << to_string(e); }
@@ -63,6 +75,7 @@ Comparison verify(const Scene& scene, Method method, Generator generator = Gener
   RenderOptions options{kWidth, kHeight, method, generator, extrusion};
   options.split_planes = variant.split_planes;
   options.split_parts = variant.split_parts;
+  options.cull = variant.cull;
   const Frame frame = render(variant, scene, options);
   if (frame.object.empty()) return {};
   auto reference = trace_reference(scene, kWidth, kHeight);
@@ -125,6 +138,22 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Combine(::testing::ValuesIn(kSceneNames), ::testing::Values(Method::zpass_prefill),
                        ::testing::Values(kSoft),
                        ::testing::Values(Extrusion::infinite, Extrusion::bounded)),
+    scene_method_name);
+
+// Culling (CC shadow volumes §3.1): every scene, by the methods of both backends and spsv.
+INSTANTIATE_TEST_SUITE_P(
+    Culled, BuiltinScenes,
+    ::testing::Combine(::testing::ValuesIn(kSceneNames),
+                       ::testing::Values(Method::zpass, Method::automatic),
+                       ::testing::Values(kSoftOcclusion, kSoftFrustum, kGlCpuOcclusion,
+                                         kGlGpuOcclusion),
+                       ::testing::Values(Extrusion::infinite)),
+    scene_method_name);
+INSTANTIATE_TEST_SUITE_P(
+    CulledSoftOnly, BuiltinScenes,
+    ::testing::Combine(::testing::ValuesIn(kSceneNames),
+                       ::testing::Values(Method::split_plane, Method::zpass_prefill),
+                       ::testing::Values(kSoftOcclusion), ::testing::Values(Extrusion::infinite)),
     scene_method_name);
 
 // Volumes ended on a far plane beyond the scene (Extrusion::bounded), by every method and
@@ -247,7 +276,7 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   ASSERT_FALSE(scene.ok());
   EXPECT_EQ(scene.error().message,
             "unknown scene 'dmeo': the built-in scenes are demo, camera-in-shadow, light-in-view, "
-            "directional, nonmanifold, glass, knight, knights16, tree, tree-decomposed");
+            "directional, nonmanifold, glass, knight, knights16, robots, tree, tree-decomposed");
 }
 
 TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
