@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include "core/clip_polygon.h"
 
@@ -307,23 +307,32 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
     const int rw = rect.x1 - rect.x0 + 1, rh = rect.y1 - rect.y0 + 1;
     const std::size_t area_pixels = static_cast<std::size_t>(rw) * rh;
     far_.assign(area_pixels, -INFINITY);
-    state_.assign(area_pixels, 0);  // bit 0: a face holds the centre; bit 1: an edge bounds it
-    auto at = [&](int x, int y) { return static_cast<std::size_t>(y - rect.y0) * rw + (x - rect.x0); };
+    state_.assign(area_pixels, 0);  // bit 0: a face holds a point of it; bit 1: an edge bounds it
+    auto at = [&](int x, int y) {
+      return static_cast<std::size_t>(y - rect.y0) * rw + (x - rect.x0);
+    };
     for (std::size_t f = 0; f < faces; ++f) {
       const std::uint32_t* fv = &topology.face_vertices[3 * f];
       const std::array<glm::dvec3, 3> t{screen_[fv[0]], screen_[fv[1]], screen_[fv[2]]};
-      const double area = (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
+      const double area =
+          (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
       const double vertex_far = std::max({t[0].z, t[1].z, t[2].z});
       // 1/depth (perspective) or depth (orthographic) is affine in x, y over the face's plane.
       auto q_of = [&](const glm::dvec3& v) { return view.perspective ? 1.0 / v.z : v.z; };
       const double q0 = q_of(t[0]), q1 = q_of(t[1]), q2 = q_of(t[2]);
       const bool planar = area != 0.0;
-      const double qx = planar ? ((q1 - q0) * (t[2].y - t[0].y) - (q2 - q0) * (t[1].y - t[0].y)) / area : 0;
-      const double qy = planar ? ((q2 - q0) * (t[1].x - t[0].x) - (q1 - q0) * (t[2].x - t[0].x)) / area : 0;
-      const int x0 = std::max(rect.x0, static_cast<int>(std::floor(std::min({t[0].x, t[1].x, t[2].x}) - kPixelSlack)));
-      const int x1 = std::min(rect.x1, static_cast<int>(std::floor(std::max({t[0].x, t[1].x, t[2].x}) + kPixelSlack)));
-      const int y0 = std::max(rect.y0, static_cast<int>(std::floor(std::min({t[0].y, t[1].y, t[2].y}) - kPixelSlack)));
-      const int y1 = std::min(rect.y1, static_cast<int>(std::floor(std::max({t[0].y, t[1].y, t[2].y}) + kPixelSlack)));
+      const double qx =
+          planar ? ((q1 - q0) * (t[2].y - t[0].y) - (q2 - q0) * (t[1].y - t[0].y)) / area : 0;
+      const double qy =
+          planar ? ((q2 - q0) * (t[1].x - t[0].x) - (q1 - q0) * (t[2].x - t[0].x)) / area : 0;
+      const int x0 = std::max(
+          rect.x0, static_cast<int>(std::floor(std::min({t[0].x, t[1].x, t[2].x}) - kPixelSlack)));
+      const int x1 = std::min(
+          rect.x1, static_cast<int>(std::floor(std::max({t[0].x, t[1].x, t[2].x}) + kPixelSlack)));
+      const int y0 = std::max(
+          rect.y0, static_cast<int>(std::floor(std::min({t[0].y, t[1].y, t[2].y}) - kPixelSlack)));
+      const int y1 = std::min(
+          rect.y1, static_cast<int>(std::floor(std::max({t[0].y, t[1].y, t[2].y}) + kPixelSlack)));
       const TriangleEdges edges(t, area);
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
@@ -342,7 +351,11 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
           const std::size_t i = at(x, y);
           far_[i] = std::max(far_[i], far);
           if (!planar) continue;
-          const bool centre = edges.holds(x + 0.5, y + 0.5);
+          // Some point of the footprint inside the face (its centre may lie on a shared edge):
+          // with no bounding edge touching it, the whole footprint is then covered.
+          const bool centre = edges.holds(x + 0.5, y + 0.5) || edges.holds(x + 0.25, y + 0.25) ||
+                              edges.holds(x + 0.75, y + 0.25) || edges.holds(x + 0.25, y + 0.75) ||
+                              edges.holds(x + 0.75, y + 0.75);
           if (centre) state_[i] |= 1;
         }
     }
@@ -351,16 +364,20 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
       const glm::dvec3& a = screen_[edge[0]];
       const glm::dvec3& b = screen_[edge[1]];
       const double slack =
-          kPixelSlack * std::max(1.0, std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y)));
-      const int y0 = std::max(rect.y0, static_cast<int>(std::floor(std::min(a.y, b.y) - kPixelSlack)));
-      const int y1 = std::min(rect.y1, static_cast<int>(std::floor(std::max(a.y, b.y) + kPixelSlack)));
+          kPixelSlack *
+          std::max(1.0, std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y)));
+      const int y0 =
+          std::max(rect.y0, static_cast<int>(std::floor(std::min(a.y, b.y) - kPixelSlack)));
+      const int y1 =
+          std::min(rect.y1, static_cast<int>(std::floor(std::max(a.y, b.y) + kPixelSlack)));
       for (int y = y0; y <= y1; ++y) {
         // The segment's x range within the row's band [y, y + 1], widened by the slack.
         double lo = std::min(a.x, b.x), hi = std::max(a.x, b.x);
         if (b.y != a.y) {
           const double ta = (y - kPixelSlack - a.y) / (b.y - a.y);
           const double tb = (y + 1 + kPixelSlack - a.y) / (b.y - a.y);
-          const double t0 = std::clamp(std::min(ta, tb), 0.0, 1.0), t1 = std::clamp(std::max(ta, tb), 0.0, 1.0);
+          const double t0 = std::clamp(std::min(ta, tb), 0.0, 1.0),
+                       t1 = std::clamp(std::max(ta, tb), 0.0, 1.0);
           lo = std::min(a.x + (b.x - a.x) * t0, a.x + (b.x - a.x) * t1);
           hi = std::max(a.x + (b.x - a.x) * t0, a.x + (b.x - a.x) * t1);
         }
@@ -385,7 +402,8 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
         std::atomic_ref<float> stored(view.occluder[static_cast<std::size_t>(y) * size_ + x]);
         const float depth = round_up(far_[i]);
         float now = stored.load(std::memory_order_relaxed);
-        while (depth < now && !stored.compare_exchange_weak(now, depth, std::memory_order_relaxed)) {
+        while (depth < now &&
+               !stored.compare_exchange_weak(now, depth, std::memory_order_relaxed)) {
         }
       }
   }
@@ -445,17 +463,21 @@ void LightViews::add_receiver_triangle(const glm::dvec3& a, const glm::dvec3& b,
                         (glm::dot(rel, view.up) / w - view.v0) / (view.v1 - view.v0) * size_, d);
     };
     std::array<ScreenTriangle, 2> fan;
-    const int parts =
-        clip_to_screen({a, b, c}, view.perspective, view.origin, view.axis, view.near, to_screen, fan);
+    const int parts = clip_to_screen({a, b, c}, view.perspective, view.origin, view.axis, view.near,
+                                     to_screen, fan);
     for (int t = 0; t < parts; ++t) {
       const auto& [p0, p1, p2] = fan[t].v;
       const float depth = round_up(std::max({p0.z, p1.z, p2.z}));
       const double area = (p1.x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (p1.y - p0.y);
       const double s = area >= 0 ? 1.0 : -1.0;
-      const int x0 = std::max(0, static_cast<int>(std::floor(std::min({p0.x, p1.x, p2.x}) - kPixelSlack)));
-      const int y0 = std::max(0, static_cast<int>(std::floor(std::min({p0.y, p1.y, p2.y}) - kPixelSlack)));
-      const int x1 = std::min(size_ - 1, static_cast<int>(std::floor(std::max({p0.x, p1.x, p2.x}) + kPixelSlack)));
-      const int y1 = std::min(size_ - 1, static_cast<int>(std::floor(std::max({p0.y, p1.y, p2.y}) + kPixelSlack)));
+      const int x0 =
+          std::max(0, static_cast<int>(std::floor(std::min({p0.x, p1.x, p2.x}) - kPixelSlack)));
+      const int y0 =
+          std::max(0, static_cast<int>(std::floor(std::min({p0.y, p1.y, p2.y}) - kPixelSlack)));
+      const int x1 = std::min(
+          size_ - 1, static_cast<int>(std::floor(std::max({p0.x, p1.x, p2.x}) + kPixelSlack)));
+      const int y1 = std::min(
+          size_ - 1, static_cast<int>(std::floor(std::max({p0.y, p1.y, p2.y}) + kPixelSlack)));
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
           // The footprint may touch the triangle unless all its corners lie outside one edge
@@ -597,8 +619,9 @@ bool LightViews::descend(const std::vector<std::vector<float>>& pyramid, const R
 bool LightViews::any_at_least(const std::vector<std::vector<float>>& pyramid,
                               const Rect& rect) const {
   int level = 0;
-  while (level + 1 < static_cast<int>(pyramid.size()) &&
-         ((rect.x1 >> level) - (rect.x0 >> level) > 2 || (rect.y1 >> level) - (rect.y0 >> level) > 2))
+  while (
+      level + 1 < static_cast<int>(pyramid.size()) &&
+      ((rect.x1 >> level) - (rect.x0 >> level) > 2 || (rect.y1 >> level) - (rect.y0 >> level) > 2))
     ++level;
   for (int ty = rect.y0 >> level; ty <= rect.y1 >> level; ++ty)
     for (int tx = rect.x0 >> level; tx <= rect.x1 >> level; ++tx)

@@ -68,13 +68,13 @@ class LightViews {
   bool cube() const { return views_count_ == 6; }
 
   // Draws opaque objects into the occluder depths, each its topology's faces at `positions` (its
-  // welded vertices, eye-relative), `box` their bounds, in parallel (oneTBB). A footprint counts as covered where the
-  // centre lies inside one of its faces and no edge that bounds the union of their projections
-  // (a silhouette seen from the light, a boundary or an irregular edge) touches it: then every
-  // ray through it meets a face that touches it, no farther than the farthest of those over it.
-  // So an object's faces cover together what no single face does (the seams of a mesh), and a
-  // pinhole or a crack, bounded by edges, stays open. Not drawn in a view whose near plane it
-  // crosses (a cut would bound it too).
+  // welded vertices, eye-relative), `box` their bounds, in parallel (oneTBB). A footprint counts
+  // as covered where a point of it (its centre or a quarter point) lies inside one of the faces
+  // and no edge that bounds the union of their projections (a silhouette seen from the light, a
+  // boundary or an irregular edge) touches it: then every ray through it meets a face that
+  // touches it, no farther than the farthest of those over it. So an object's faces cover
+  // together what no single face does (the seams of a mesh), and a pinhole or a crack, bounded by
+  // edges, stays open. Not drawn in a view whose near plane it crosses (a cut would bound it too).
   struct Occluder {
     const Topology* topology = nullptr;
     std::span<const glm::dvec3> positions;
@@ -139,8 +139,8 @@ class LightViews {
   std::size_t views_count_ = 0;
   bool occluders_ = false, kept_ = false;  // what finish() built
   // add_occluder's scratch, one per thread: the bounding edges, the vertices in the view, and per
-  // pixel of the object's rectangle the farthest depth and whether a face holds the centre / an
-  // edge bounds it.
+  // pixel of the object's rectangle the farthest depth and whether a face holds a point of it /
+  // an edge bounds it.
   struct OccluderScratch {
     std::vector<IndexPair> bounds;
     std::vector<glm::dvec3> screen;

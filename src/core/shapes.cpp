@@ -186,17 +186,18 @@ Mesh make_knight() {
 Mesh make_robot() {
   Mesh m;
   for (const float side : {-1.0f, 1.0f}) {
-    append_mesh(m, make_box({0.08f * side - 0.1f, 0.0f, -0.12f}, {0.08f * side + 0.1f, 0.1f, 0.16f}));
+    append_mesh(m,
+                make_box({0.08f * side - 0.1f, 0.0f, -0.12f}, {0.08f * side + 0.1f, 0.1f, 0.16f}));
     append_mesh(m, make_tube({0.14f * side, 0.08f, 0.0f}, {0.16f * side, 0.85f, 0.0f}, 0.08f, 0.1f,
-                             12));                                                   // leg
+                             12));  // leg
     append_mesh(m, make_tube({0.42f * side, 1.5f, 0.0f}, {0.5f * side, 0.95f, 0.1f}, 0.07f, 0.06f,
-                             10));                                                   // arm
+                             10));                                          // arm
     append_mesh(m, make_sphere({0.5f * side, 0.9f, 0.12f}, 0.09f, 8, 12));  // hand
   }
-  append_mesh(m, make_box({-0.36f, 0.82f, -0.22f}, {0.36f, 1.6f, 0.22f}));   // torso
-  append_mesh(m, make_box({-0.24f, 1.05f, 0.2f}, {0.24f, 1.45f, 0.27f}));    // chest plate
-  append_mesh(m, make_tube({0.0f, 1.58f, 0.0f}, {0.0f, 1.7f, 0.0f}, 0.09f, 0.09f, 10));  // neck
-  append_mesh(m, make_sphere({0.0f, 1.85f, 0.0f}, 0.2f, 12, 18));           // head
+  append_mesh(m, make_box({-0.36f, 0.82f, -0.22f}, {0.36f, 1.6f, 0.22f}));  // torso
+  append_mesh(m, make_box({-0.24f, 1.05f, 0.2f}, {0.24f, 1.45f, 0.27f}));   // chest plate
+  append_mesh(m, make_tube({0.0f, 1.58f, 0.0f}, {0.0f, 1.7f, 0.0f}, 0.09f, 0.09f, 10));   // neck
+  append_mesh(m, make_sphere({0.0f, 1.85f, 0.0f}, 0.2f, 12, 18));                         // head
   append_mesh(m, make_tube({0.0f, 2.0f, 0.0f}, {0.05f, 2.22f, 0.0f}, 0.02f, 0.015f, 6));  // antenna
   append_mesh(m, make_sphere({0.05f, 2.24f, 0.0f}, 0.04f, 6, 8));
   return m;

@@ -5,10 +5,10 @@
 #include <atomic>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
-#include <tbb/parallel_for.h>
 
 namespace shadowvol {
 namespace {
@@ -19,9 +19,9 @@ bool in_frustum(const Box& box, const glm::dmat4& view_proj) {
   if (box.empty()) return false;
   std::array<int, 5> outside{};
   for (int i = 0; i < 8; ++i) {
-    const glm::dvec4 c = view_proj * glm::dvec4(i & 1 ? box.hi.x : box.lo.x,
-                                                i & 2 ? box.hi.y : box.lo.y,
-                                                i & 4 ? box.hi.z : box.lo.z, 1.0);
+    const glm::dvec4 c =
+        view_proj * glm::dvec4(i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y,
+                               i & 4 ? box.hi.z : box.lo.z, 1.0);
     outside[0] += c.x > c.w;
     outside[1] += c.x < -c.w;
     outside[2] += c.y > c.w;

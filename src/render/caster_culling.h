@@ -55,7 +55,7 @@ class CasterCulling {
   std::vector<glm::dvec3> samples_;  // per pixel, the point it shows (find_receivers)
   // (object, face) of visible faces seen edge-on, whose plane gives no point: receivers whole.
   std::vector<std::pair<std::size_t, std::uint32_t>> edge_on_;
-  std::vector<glm::dvec3> world_;       // every object's vertices, eye-relative
+  std::vector<glm::dvec3> world_;  // every object's vertices, eye-relative
   std::vector<std::size_t> world_first_;
 };
 

@@ -320,27 +320,31 @@ Scene robots() {
     const bool along_x = i < 2;
     const float at = i % 2 ? kRoom : -kRoom - 0.4f;
     const glm::vec3 lo = along_x ? glm::vec3(-kRoom, 0.0f, at) : glm::vec3(at, 0.0f, -kRoom);
-    const glm::vec3 hi = lo + (along_x ? glm::vec3(2.0f * kRoom, 4.0f, 0.4f)
-                                       : glm::vec3(0.4f, 4.0f, 2.0f * kRoom));
-    s.objects.push_back(make_object("wall" + std::to_string(i), make_box(lo, hi), glm::mat4(1.0f),
-                                    wall));
+    const glm::vec3 hi =
+        lo + (along_x ? glm::vec3(2.0f * kRoom, 4.0f, 0.4f) : glm::vec3(0.4f, 4.0f, 2.0f * kRoom));
+    s.objects.push_back(
+        make_object("wall" + std::to_string(i), make_box(lo, hi), glm::mat4(1.0f), wall));
   }
   // Crates stacked between the light and the crowd: what stands in their shadow is culled.
   for (int i = 0; i < 4; ++i)
-    s.objects.push_back(make_object("crate" + std::to_string(i),
-                                    make_box({-1.3f, 0.0f, -1.3f}, {1.3f, 3.2f, 1.3f}),
-                                    place({-11.0f, 0.0f, -9.0f + 6.0f * static_cast<float>(i)},
-                                          10.0f * static_cast<float>(i)),
-                                    {0.55f, 0.42f, 0.3f}));
+    s.objects.push_back(make_object(
+        "crate" + std::to_string(i), make_box({-1.3f, 0.0f, -1.3f}, {1.3f, 3.2f, 1.3f}),
+        place({-11.0f, 0.0f, -9.0f + 6.0f * static_cast<float>(i)}, 10.0f * static_cast<float>(i)),
+        {0.55f, 0.42f, 0.3f}));
   const auto shared = std::make_shared<const Mesh>(make_robot());
   const auto topology = std::make_shared<const Topology>(build_topology(*shared));
   for (int i = 0; i < 96; ++i) {
     const int row = i / 12, column = i % 12;
     const float x = 2.2f * static_cast<float>(row) - 9.0f + (column % 2 ? 0.5f : 0.0f);
     const float z = 2.3f * static_cast<float>(column) - 12.6f;
-    const glm::vec3 colour = row % 2 ? glm::vec3(0.75f, 0.55f, 0.3f) : glm::vec3(0.45f, 0.6f, 0.75f);
-    SceneObject robot{"robot" + std::to_string(i), shared, topology,
-                      place({x, 0.0f, z}, 90.0f + 7.0f * static_cast<float>(i % 5)), {colour}, {}};
+    const glm::vec3 colour =
+        row % 2 ? glm::vec3(0.75f, 0.55f, 0.3f) : glm::vec3(0.45f, 0.6f, 0.75f);
+    SceneObject robot{"robot" + std::to_string(i),
+                      shared,
+                      topology,
+                      place({x, 0.0f, z}, 90.0f + 7.0f * static_cast<float>(i % 5)),
+                      {colour},
+                      {}};
     // The crowd marches towards the light, each row at its own pace.
     robot.animation.move = {-0.04f - 0.01f * static_cast<float>(row % 3), 0.0f, 0.0f};
     s.objects.push_back(std::move(robot));

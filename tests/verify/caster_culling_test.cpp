@@ -24,7 +24,8 @@ glm::mat4 at(glm::vec3 p) { return glm::translate(glm::mat4(1.0f), p); }
 Scene stage(std::string name) {
   Scene s;
   s.name = std::move(name);
-  s.objects.push_back(make_object("ground", make_ground(6.0f), glm::mat4(1.0f), {0.8f, 0.8f, 0.8f}));
+  s.objects.push_back(
+      make_object("ground", make_ground(6.0f), glm::mat4(1.0f), {0.8f, 0.8f, 0.8f}));
   s.lights.push_back({{0.0f, 10.0f, 0.0f, 1.0f}, {1.0f, 1.0f, 1.0f}, 1.0f});
   s.camera = {{0.0f, 6.0f, 8.0f}, {0.0f, 0.0f, 0.0f}};
   return s;
@@ -121,9 +122,9 @@ TEST_P(CasterCulling, CullsACasterWhoseShadowIsUnseen) {
 TEST_P(CasterCulling, KeepsACasterWhoseShadowFallsOnAThinReceiver) {
   Scene s = stage("thin-receiver");
   s.objects.clear();  // no ground: the shadow falls on a pole thinner than a light-view pixel
-  s.objects.push_back(make_object("pole", make_tube({0.0f, 0.0f, 0.0f}, {0.0f, 3.0f, 0.0f}, 0.01f,
-                                                    0.01f, 8),
-                                  glm::mat4(1.0f), {0.8f, 0.8f, 0.8f}));
+  s.objects.push_back(
+      make_object("pole", make_tube({0.0f, 0.0f, 0.0f}, {0.0f, 3.0f, 0.0f}, 0.01f, 0.01f, 8),
+                  glm::mat4(1.0f), {0.8f, 0.8f, 0.8f}));
   // The light from the side, so that the pole's side faces it; the box on the way from the
   // pole's middle to the light.
   s.lights[0].position = {3.0f, 10.0f, 0.0f, 1.0f};
