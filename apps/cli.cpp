@@ -128,9 +128,8 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   options.split_parts = *split_parts;
   options.cull = *cull;
   options.light_view_size = args.light_view;
-  if (options.light_view_size < kMinLightView || options.light_view_size > kMaxLightView)
-    return make_error("--light-view: " + std::to_string(args.light_view) + " is outside " +
-                      std::to_string(kMinLightView) + " .. " + std::to_string(kMaxLightView));
+  if (auto ok = check_light_view_size(args.light_view); !ok)
+    return make_error("--light-view: " + ok.error().message);
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);
   if (auto ok = check_frame(loaded->scene, options); !ok) return ok.error();
   return ResolvedFrame{std::move(loaded->scene), options, *backend, {*volumes, *counts}};

@@ -37,11 +37,8 @@ std::array<glm::dvec3, 8> corners(const Box& box) {
   return c;
 }
 
-// A triangle in a view's pixels: x, y, and what is linear in them (1/depth in perspective,
-// depth in orthographic).
-struct ScreenTriangle {
-  std::array<glm::dvec3, 3> v;
-};
+// A triangle in a view's pixels: x, y and depth at each vertex.
+using ScreenTriangle = std::array<glm::dvec3, 3>;
 
 // Levels of 2x2 maxima over level 0 (size x size, already filled), in the storage the pyramid
 // had: a frame of the same size allocates nothing.
@@ -78,7 +75,8 @@ void LightViews::set_view(View& view, bool perspective, const glm::dvec3& origin
   view.right = glm::normalize(glm::cross(right_hint, view.axis));
   view.up = glm::cross(view.axis, view.right);
   const std::size_t pixels = depths ? static_cast<std::size_t>(size_) * size_ : 0;
-  view.occluder.assign(pixels, kFar);
+  view.seen.resize(std::max<std::size_t>(view.seen.size(), 1));
+  view.seen[0].assign(pixels, kFar);
   view.receiver.assign(pixels, -kFar);
 }
 
@@ -161,15 +159,26 @@ void LightViews::fit(const glm::dvec4& light, const std::vector<Box>& receivers,
   }
 }
 
-bool LightViews::project(const View& view, const glm::dvec3& p, glm::dvec3& out) const {
+glm::dvec3 LightViews::to_pixels(const View& view, const glm::dvec3& p, double d) const {
   const glm::dvec3 rel = p - view.origin;
-  const double d = glm::dot(rel, view.axis);
-  if (view.perspective && !(d >= view.near)) return false;
   const double w = view.perspective ? d : 1.0;
-  const double u = glm::dot(rel, view.right) / w, v = glm::dot(rel, view.up) / w;
-  out = {(u - view.u0) / (view.u1 - view.u0) * size_, (v - view.v0) / (view.v1 - view.v0) * size_,
-         d};
+  return {(glm::dot(rel, view.right) / w - view.u0) / (view.u1 - view.u0) * size_,
+          (glm::dot(rel, view.up) / w - view.v0) / (view.v1 - view.v0) * size_, d};
+}
+
+bool LightViews::project(const View& view, const glm::dvec3& p, glm::dvec3& out) const {
+  const double d = glm::dot(p - view.origin, view.axis);
+  if (view.perspective && !(d >= view.near)) return false;
+  out = to_pixels(view, p, d);
   return true;
+}
+
+bool LightViews::about_light(const Box& box) const {
+  if (!cube()) return false;
+  const double near = views_[0].near;
+  const glm::dvec3 l = views_[0].origin;
+  return glm::all(glm::lessThanEqual(box.lo - near, l)) &&
+         glm::all(glm::greaterThanEqual(box.hi + near, l));
 }
 
 namespace {
@@ -191,7 +200,7 @@ int clip_to_screen(const std::array<glm::dvec3, 3>& tri, bool perspective, const
     screen[i] = project(poly[i], d);
   }
   int m = 0;
-  for (int i = 1; i + 1 < n; ++i) out[m++].v = {screen[0], screen[i], screen[i + 1]};
+  for (int i = 1; i + 1 < n; ++i) out[m++] = {screen[0], screen[i], screen[i + 1]};
   return m;
 }
 
@@ -250,10 +259,10 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
   const Topology& topology = *occluder.topology;
   const std::span<const glm::dvec3> positions = occluder.positions;
   const Box& box = occluder.box;
-  std::vector<IndexPair>& bounds_ = scratch.bounds;
-  std::vector<glm::dvec3>& screen_ = scratch.screen;
-  std::vector<double>& far_ = scratch.far;
-  std::vector<std::uint8_t>& state_ = scratch.state;
+  std::vector<IndexPair>& bounds = scratch.bounds;
+  std::vector<glm::dvec3>& screen = scratch.screen;
+  std::vector<double>& farthest = scratch.farthest;
+  std::vector<std::uint8_t>& state = scratch.state;
   if (views_count_ == 0 || topology.face_count() == 0) return;
   // Edges where the faces do not lie on both sides, seen from the light: the plane through the
   // light and the edge has both third vertices on one side (a silhouette), or the edge has one
@@ -269,23 +278,23 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
     }
     return a;
   };
-  bounds_.clear();
+  bounds.clear();
   const std::size_t faces = topology.face_count();
   for (std::size_t e = 0; e < topology.edge_faces.size(); ++e) {
     const auto [a, b] = topology.edge_vertices[e];
     const auto [f0, f1] = topology.edge_faces[e];
-    bool bounds = f1 >= faces;
-    if (!bounds) {
+    bool bounding = f1 >= faces;
+    if (!bounding) {
       const glm::dvec3& pa = positions[a];
       const glm::dvec3 n = directional ? glm::cross(positions[b] - pa, ray)
                                        : glm::cross(pa - light, positions[b] - light);
       const double s0 = glm::dot(n, positions[third(f0, a, b)] - pa);
       const double s1 = glm::dot(n, positions[third(f1, a, b)] - pa);
-      bounds = !((s0 > 0 && s1 < 0) || (s0 < 0 && s1 > 0));
+      bounding = !((s0 > 0 && s1 < 0) || (s0 < 0 && s1 > 0));
     }
-    if (bounds) bounds_.push_back({a, b});
+    if (bounding) bounds.push_back({a, b});
   }
-  for (const IndexPair& edge : topology.irregular_vertices) bounds_.push_back(edge);
+  for (const IndexPair& edge : topology.irregular_vertices) bounds.push_back(edge);
 
   for (View& view : active()) {
     // Only an object wholly beyond the near plane: a cut would bound its projection too.
@@ -296,24 +305,19 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
       for (const glm::dvec3& c : corners(box))
         if (!(glm::dot(c - view.origin, view.axis) >= view.near)) untestable = true;
     if (untestable) continue;
-    screen_.resize(positions.size());
-    for (std::size_t v = 0; v < positions.size(); ++v) {
-      const glm::dvec3 rel = positions[v] - view.origin;
-      const double d = glm::dot(rel, view.axis);
-      const double w = view.perspective ? d : 1.0;
-      screen_[v] = {(glm::dot(rel, view.right) / w - view.u0) / (view.u1 - view.u0) * size_,
-                    (glm::dot(rel, view.up) / w - view.v0) / (view.v1 - view.v0) * size_, d};
-    }
+    screen.resize(positions.size());
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      screen[v] = to_pixels(view, positions[v], glm::dot(positions[v] - view.origin, view.axis));
     const int rw = rect.x1 - rect.x0 + 1, rh = rect.y1 - rect.y0 + 1;
     const std::size_t area_pixels = static_cast<std::size_t>(rw) * rh;
-    far_.assign(area_pixels, -INFINITY);
-    state_.assign(area_pixels, 0);  // bit 0: a face holds a point of it; bit 1: an edge bounds it
+    farthest.assign(area_pixels, -INFINITY);
+    state.assign(area_pixels, 0);  // bit 0: a face holds a point of it; bit 1: an edge bounds it
     auto at = [&](int x, int y) {
       return static_cast<std::size_t>(y - rect.y0) * rw + (x - rect.x0);
     };
     for (std::size_t f = 0; f < faces; ++f) {
       const std::uint32_t* fv = &topology.face_vertices[3 * f];
-      const std::array<glm::dvec3, 3> t{screen_[fv[0]], screen_[fv[1]], screen_[fv[2]]};
+      const std::array<glm::dvec3, 3> t{screen[fv[0]], screen[fv[1]], screen[fv[2]]};
       const double area =
           (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
       const double vertex_far = std::max({t[0].z, t[1].z, t[2].z});
@@ -349,20 +353,20 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
             far = std::min(far, plane_far);
           }
           const std::size_t i = at(x, y);
-          far_[i] = std::max(far_[i], far);
+          farthest[i] = std::max(farthest[i], far);
           if (!planar) continue;
           // Some point of the footprint inside the face (its centre may lie on a shared edge):
           // with no bounding edge touching it, the whole footprint is then covered.
           const bool centre = edges.holds(x + 0.5, y + 0.5) || edges.holds(x + 0.25, y + 0.25) ||
                               edges.holds(x + 0.75, y + 0.25) || edges.holds(x + 0.25, y + 0.75) ||
                               edges.holds(x + 0.75, y + 0.75);
-          if (centre) state_[i] |= 1;
+          if (centre) state[i] |= 1;
         }
     }
     // Every footprint a bounding edge may touch: row by row along the segment.
-    for (const IndexPair& edge : bounds_) {
-      const glm::dvec3& a = screen_[edge[0]];
-      const glm::dvec3& b = screen_[edge[1]];
+    for (const IndexPair& edge : bounds) {
+      const glm::dvec3& a = screen[edge[0]];
+      const glm::dvec3& b = screen[edge[1]];
       const double slack =
           kPixelSlack *
           std::max(1.0, std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y)));
@@ -390,17 +394,17 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
             const double v = edge_value(a, b, x + (c & 1), y + (c >> 1));
             mn = std::min(mn, v), mx = std::max(mx, v);
           }
-          if (mn <= slack && mx >= -slack) state_[at(x, y)] |= 2;
+          if (mn <= slack && mx >= -slack) state[at(x, y)] |= 2;
         }
       }
     }
     for (int y = rect.y0; y <= rect.y1; ++y)
       for (int x = rect.x0; x <= rect.x1; ++x) {
         const std::size_t i = at(x, y);
-        if (state_[i] != 1) continue;
+        if (state[i] != 1) continue;
         // Objects may be drawn from several threads at once: the minimum is taken atomically.
-        std::atomic_ref<float> stored(view.occluder[static_cast<std::size_t>(y) * size_ + x]);
-        const float depth = round_up(far_[i]);
+        std::atomic_ref<float> stored(view.seen[0][static_cast<std::size_t>(y) * size_ + x]);
+        const float depth = round_up(farthest[i]);
         float now = stored.load(std::memory_order_relaxed);
         while (depth < now &&
                !stored.compare_exchange_weak(now, depth, std::memory_order_relaxed)) {
@@ -456,20 +460,15 @@ void LightViews::add_receiver_point(const glm::dvec3& p) {
 void LightViews::add_receiver_triangle(const glm::dvec3& a, const glm::dvec3& b,
                                        const glm::dvec3& c) {
   for (View& view : active()) {
-    auto to_screen = [&](const glm::dvec3& p, double d) {
-      const glm::dvec3 rel = p - view.origin;
-      const double w = view.perspective ? d : 1.0;
-      return glm::dvec3((glm::dot(rel, view.right) / w - view.u0) / (view.u1 - view.u0) * size_,
-                        (glm::dot(rel, view.up) / w - view.v0) / (view.v1 - view.v0) * size_, d);
-    };
+    auto to_screen = [&](const glm::dvec3& p, double d) { return to_pixels(view, p, d); };
     std::array<ScreenTriangle, 2> fan;
     const int parts = clip_to_screen({a, b, c}, view.perspective, view.origin, view.axis, view.near,
                                      to_screen, fan);
     for (int t = 0; t < parts; ++t) {
-      const auto& [p0, p1, p2] = fan[t].v;
+      const auto& [p0, p1, p2] = fan[t];
       const float depth = round_up(std::max({p0.z, p1.z, p2.z}));
       const double area = (p1.x - p0.x) * (p2.y - p0.y) - (p2.x - p0.x) * (p1.y - p0.y);
-      const double s = area >= 0 ? 1.0 : -1.0;
+      const TriangleEdges edges(fan[t], area);
       const int x0 =
           std::max(0, static_cast<int>(std::floor(std::min({p0.x, p1.x, p2.x}) - kPixelSlack)));
       const int y0 =
@@ -480,22 +479,8 @@ void LightViews::add_receiver_triangle(const glm::dvec3& a, const glm::dvec3& b,
           size_ - 1, static_cast<int>(std::floor(std::max({p0.y, p1.y, p2.y}) + kPixelSlack)));
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-          // The footprint may touch the triangle unless all its corners lie outside one edge
-          // (a thin triangle's bounding box otherwise; degenerate ones keep their whole box).
-          bool touches = true;
-          for (int k = 0; k < 3 && touches && area != 0.0; ++k) {
-            const glm::dvec3& u = fan[t].v[k];
-            const glm::dvec3& w = fan[t].v[(k + 1) % 3];
-            const double ex = w.x - u.x, ey = w.y - u.y;
-            const double slack = kPixelSlack * std::sqrt(ex * ex + ey * ey);
-            double best = -INFINITY;
-            for (int corner = 0; corner < 4; ++corner) {
-              const double cx = x + (corner & 1), cy = y + (corner >> 1);
-              best = std::max(best, s * (ex * (cy - u.y) - ey * (cx - u.x)));
-            }
-            touches = best >= -slack;
-          }
-          if (!touches) continue;
+          // A degenerate triangle keeps its whole box.
+          if (area != 0.0 && !edges.may_touch(x, y)) continue;
           float& stored = view.receiver[static_cast<std::size_t>(y) * size_ + x];
           stored = std::max(stored, depth);
         }
@@ -513,9 +498,13 @@ bool LightViews::box_rect(const View& view, const Box& box, Rect& rect, bool& un
     in_front += view.perspective ? d[i] >= view.near : 1;
     beyond_light += d[i] > 0.0;
   }
-  std::vector<glm::dvec3> points;
+  // The corners, or a cube face's cut of the box: its corners beyond the near plane and the
+  // points where its 12 edges cross it.
+  std::array<glm::dvec3, 20> points;
+  int count = 0;
   if (in_front == 8) {
-    points.assign(c.begin(), c.end());
+    std::copy(c.begin(), c.end(), points.begin());
+    count = 8;
   } else {
     // A single frustum holds every receiver, so what lies wholly behind the light shadows none;
     // a box partly in front of its near plane may (untestable). A cube face: the box's part
@@ -526,27 +515,25 @@ bool LightViews::box_rect(const View& view, const Box& box, Rect& rect, bool& un
     }
     if (in_front == 0) return false;
     for (int i = 0; i < 8; ++i) {
-      if (d[i] >= view.near) points.push_back(c[i]);
+      if (d[i] >= view.near) points[count++] = c[i];
       for (int axis = 0; axis < 3; ++axis) {
         const int j = i | (1 << axis);
         if (j == i) continue;
         if ((d[i] >= view.near) != (d[j] >= view.near)) {
           const double t = (view.near - d[i]) / (d[j] - d[i]);
-          points.push_back(c[i] + (c[j] - c[i]) * t);
+          points[count++] = c[i] + (c[j] - c[i]) * t;
         }
       }
     }
   }
   double min_x = INFINITY, max_x = -INFINITY, min_y = INFINITY, max_y = -INFINITY;
   double zmin = INFINITY;
-  for (const glm::dvec3& p : points) {
-    const glm::dvec3 rel = p - view.origin;
-    const double dp = std::max(glm::dot(rel, view.axis), view.perspective ? view.near : -INFINITY);
-    const double w = view.perspective ? dp : 1.0;
-    const double x = (glm::dot(rel, view.right) / w - view.u0) / (view.u1 - view.u0) * size_;
-    const double y = (glm::dot(rel, view.up) / w - view.v0) / (view.v1 - view.v0) * size_;
-    min_x = std::min(min_x, x), max_x = std::max(max_x, x);
-    min_y = std::min(min_y, y), max_y = std::max(max_y, y);
+  for (int i = 0; i < count; ++i) {
+    const double dp = std::max(glm::dot(points[i] - view.origin, view.axis),
+                               view.perspective ? view.near : -INFINITY);
+    const glm::dvec3 q = to_pixels(view, points[i], dp);
+    min_x = std::min(min_x, q.x), max_x = std::max(max_x, q.x);
+    min_y = std::min(min_y, q.y), max_y = std::max(max_y, q.y);
     zmin = std::min(zmin, dp);
   }
   // Fattened by a pixel, then cut to the window: pixels outside it hold no receiver.
@@ -568,14 +555,7 @@ bool LightViews::touches(const Box& box) const {
     bool untestable = false;
     if (box_rect(view, box, rect, untestable) || untestable) return true;
   }
-  // In the cube, a box about the light lies in no face's frustum but in the near cube.
-  if (cube()) {
-    const double near = views_[0].near;
-    const glm::dvec3 l = views_[0].origin;
-    return glm::all(glm::lessThanEqual(box.lo - near, l)) &&
-           glm::all(glm::greaterThanEqual(box.hi + near, l));
-  }
-  return false;
+  return about_light(box);
 }
 
 void LightViews::finish(bool occluders, bool receivers) {
@@ -583,16 +563,13 @@ void LightViews::finish(bool occluders, bool receivers) {
   kept_ = occluders || receivers;
   for (View& view : active()) {
     if (!kept_) continue;
-    view.seen.resize(std::max<std::size_t>(view.seen.size(), 1));
+    // seen[0] holds the occluders drawn (+inf everywhere without them).
+    const std::vector<float>& seen = view.seen[0];
     view.kept.resize(std::max<std::size_t>(view.kept.size(), 1));
-    std::vector<float>& seen = view.seen[0];
     std::vector<float>& kept = view.kept[0];
-    seen.resize(view.occluder.size());
-    kept.resize(view.occluder.size());
-    for (std::size_t i = 0; i < kept.size(); ++i) {
-      seen[i] = occluders ? view.occluder[i] : kFar;
+    kept.resize(seen.size());
+    for (std::size_t i = 0; i < kept.size(); ++i)
       kept[i] = receivers ? std::min(seen[i], view.receiver[i]) : seen[i];
-    }
     if (occluders) build_pyramid(view.seen, size_);
     build_pyramid(view.kept, size_);
   }
@@ -631,13 +608,7 @@ bool LightViews::any_at_least(const std::vector<std::vector<float>>& pyramid,
 
 BoxVisibility LightViews::test(const Box& box, std::uint64_t& queries) const {
   if (box.empty() || views_count_ == 0) return BoxVisibility::unseen;
-  if (cube()) {  // about the light: in no face's frustum whole
-    const double near = views_[0].near;
-    const glm::dvec3 l = views_[0].origin;
-    if (glm::all(glm::lessThanEqual(box.lo - near, l)) &&
-        glm::all(glm::greaterThanEqual(box.hi + near, l)))
-      return BoxVisibility::kept;
-  }
+  if (about_light(box)) return BoxVisibility::kept;
   bool in_view = false, seen = false;
   for (const View& view : active()) {
     Rect rect;

@@ -102,17 +102,22 @@ class LightViews {
     double u0 = -1, u1 = 1, v0 = -1, v1 = 1;  // the window on the image plane
     double near = 0;                          // perspective: the nearest depth it holds
     double tolerance = 0;                     // of depths: 1e-5 of its depth range
-    std::vector<float> occluder, receiver;    // size * size, row-major
-    // Levels of 2x2 maxima: [0] is per pixel. `seen`: the occluder depth; `kept`: the lesser of
-    // occluder and receiver, so that a box is kept where some texel reaches its depth in both.
+    std::vector<float> receiver;              // size * size, row-major
+    // Levels of 2x2 maxima: [0] is per pixel, size * size, row-major. `seen`: the occluder depth
+    // (drawn into seen[0]); `kept`: the lesser of occluder and receiver, so that a box is kept
+    // where some texel reaches its depth in both.
     std::vector<std::vector<float>> seen, kept;
   };
   struct Rect {
     int x0, y0, x1, y1;  // inclusive pixel range
     double zmin;         // the box's nearest depth in the view, less the tolerance
   };
+  // Pixel coordinates (x, y) of a point at depth d in a view, and d.
+  glm::dvec3 to_pixels(const View& view, const glm::dvec3& p, double d) const;
   // Pixel coordinates (x, y) and depth of a point in a view; false behind its near plane.
   bool project(const View& view, const glm::dvec3& p, glm::dvec3& out) const;
+  // Whether a cube's box lies about the light: in the near cube, in no face's frustum whole.
+  bool about_light(const Box& box) const;
   // Into the receiver depths of one view, at every pixel within the slack of the point.
   void splat_receiver(View& view, const glm::dvec3& p);
   // The box's pixels and nearest depth in a view: false where it lies outside it; `untestable`
@@ -144,7 +149,7 @@ class LightViews {
   struct OccluderScratch {
     std::vector<IndexPair> bounds;
     std::vector<glm::dvec3> screen;
-    std::vector<double> far;
+    std::vector<double> farthest;
     std::vector<std::uint8_t> state;
   };
   void add_occluder(const Occluder& occluder, OccluderScratch& scratch);

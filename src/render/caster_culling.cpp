@@ -33,6 +33,13 @@ bool in_frustum(const Box& box, const glm::dmat4& view_proj) {
 
 }  // namespace
 
+std::array<glm::dvec3, 3> CasterCulling::face(const Scene& scene, std::size_t o,
+                                              std::uint32_t f) const {
+  const std::uint32_t* v = &scene.objects[o].topology->face_vertices[3 * std::size_t{f}];
+  const glm::dvec3* p = world(o);
+  return {p[v[0]], p[v[1]], p[v[2]]};
+}
+
 void CasterCulling::find_receivers(const Scene& scene, const RenderOptions& options,
                                    const FramePlan& plan, const SurfaceLayer* opaque) {
   const std::size_t objects = plan.objects.size();
@@ -42,9 +49,11 @@ void CasterCulling::find_receivers(const Scene& scene, const RenderOptions& opti
     const bool visible = in_frustum(boxes_[o], view_proj);
     receiver_[o] = visible && (options.cull == Cull::frustum || plan.transparent(o));
   }
-  samples_.clear();
   edge_on_.clear();
-  if (options.cull != Cull::occlusion || !opaque) return;
+  if (options.cull != Cull::occlusion || !opaque) {
+    samples_.clear();
+    return;
+  }
   // Each pixel's point: where the ray through its centre meets its face's plane; NaN where it
   // shows nothing, (inf, NaN, NaN) where its face is edge-on to the eye.
   const glm::dmat4 inv_view_proj(plan.inv_view_proj);
@@ -69,10 +78,9 @@ void CasterCulling::find_receivers(const Scene& scene, const RenderOptions& opti
           .store(1, std::memory_order_relaxed);
       if (o != last_object || f != last_face) {
         last_object = o, last_face = f;
-        const std::uint32_t* tri = &scene.objects[o].topology->face_vertices[3 * std::size_t{f}];
-        const glm::dvec3* v = world(static_cast<std::size_t>(o));
-        a = v[tri[0]];
-        normal = glm::cross(v[tri[1]] - a, v[tri[2]] - a);
+        const std::array<glm::dvec3, 3> v = face(scene, static_cast<std::size_t>(o), f);
+        a = v[0];
+        normal = glm::cross(v[1] - a, v[2] - a);
       }
       // The ray from the eye (the origin) through the pixel's centre on the near plane.
       const glm::dvec4 n = origin + step_x * (x + 0.5) + step_y * (y + 0.5);
@@ -96,15 +104,15 @@ void CasterCulling::cull(const Scene& scene, const RenderOptions& options, Frame
   if (options.cull == Cull::none) return;
   const std::size_t objects = plan.objects.size();
   boxes_.resize(objects);
-  world_first_.resize(objects + 1);
-  world_first_[0] = 0;
-  for (std::size_t o = 0; o < objects; ++o) {
-    const ObjectPlan& op = plan.objects[o];
-    boxes_[o] = {glm::dvec3(op.lo), glm::dvec3(op.hi)};
+  for (std::size_t o = 0; o < objects; ++o)
+    boxes_[o] = {glm::dvec3(plan.objects[o].lo), glm::dvec3(plan.objects[o].hi)};
+  const bool occlusion = options.cull == Cull::occlusion;
+  // The vertices, which only the occlusion tests draw.
+  world_first_.assign(objects + 1, 0);
+  for (std::size_t o = 0; occlusion && o < objects; ++o)
     world_first_[o + 1] = world_first_[o] + scene.objects[o].topology->positions.size();
-  }
   world_.resize(world_first_[objects]);
-  for (std::size_t o = 0; o < objects; ++o) {
+  for (std::size_t o = 0; occlusion && o < objects; ++o) {
     const glm::dmat4 model(plan.objects[o].model);
     const std::vector<glm::vec3>& positions = scene.objects[o].topology->positions;
     for (std::size_t v = 0; v < positions.size(); ++v)
@@ -115,13 +123,6 @@ void CasterCulling::cull(const Scene& scene, const RenderOptions& options, Frame
   for (std::size_t o = 0; o < objects; ++o)
     if (receiver_[o]) receiver_boxes_.push_back(boxes_[o]);
 
-  const bool occlusion = options.cull == Cull::occlusion;
-  auto each_triangle = [&](std::size_t o, auto&& draw) {
-    const std::vector<std::uint32_t>& indices = scene.objects[o].topology->face_vertices;
-    const glm::dvec3* v = world(o);
-    for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
-      draw(v[indices[t]], v[indices[t + 1]], v[indices[t + 2]]);
-  };
   for (std::size_t l = 0; l < plan.lights.size(); ++l) {
     views_.fit(glm::dvec4(plan.lights[l]), receiver_boxes_, options.light_view_size, occlusion);
     stats.light_views += static_cast<int>(views_.view_count());
@@ -134,15 +135,15 @@ void CasterCulling::cull(const Scene& scene, const RenderOptions& options, Frame
         }
       views_.add_occluders(occluders_);
       views_.add_receiver_points(samples_);
-      for (const auto& [o, f] : edge_on_) {
-        const std::uint32_t* tri = &scene.objects[o].topology->face_vertices[3 * std::size_t{f}];
-        views_.add_receiver_triangle(world(o)[tri[0]], world(o)[tri[1]], world(o)[tri[2]]);
-      }
+      auto add_face = [&](std::size_t o, std::uint32_t f) {
+        const std::array<glm::dvec3, 3> v = face(scene, o, f);
+        views_.add_receiver_triangle(v[0], v[1], v[2]);
+      };
+      for (const auto& [o, f] : edge_on_) add_face(o, f);
       for (std::size_t o = 0; o < objects; ++o)
         if (plan.transparent(o) && receiver_[o])
-          each_triangle(o, [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-            views_.add_receiver_triangle(a, b, c);
-          });
+          for (std::uint32_t f = 0; f < scene.objects[o].topology->face_count(); ++f)
+            add_face(o, f);
     }
     views_.finish(occlusion, occlusion);
     for (std::size_t o = 0; o < objects; ++o) {

@@ -19,6 +19,7 @@
 // rasterization cannot give without conservative-raster extensions.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -44,8 +45,10 @@ class CasterCulling {
  private:
   void find_receivers(const Scene& scene, const RenderOptions& options, const FramePlan& plan,
                       const SurfaceLayer* opaque);
-  // The vertices of object o's topology (welded), eye-relative, in double.
-  const glm::dvec3* world(std::size_t o) const { return &world_[world_first_[o]]; }
+  // The vertices of object o's topology (welded), eye-relative, in double (Cull::occlusion).
+  const glm::dvec3* world(std::size_t o) const { return world_.data() + world_first_[o]; }
+  // Face f of object o, eye-relative.
+  std::array<glm::dvec3, 3> face(const Scene& scene, std::size_t o, std::uint32_t f) const;
 
   LightViews views_;
   std::vector<Box> boxes_;              // per object, eye-relative

@@ -71,10 +71,15 @@ Expected<void> check_options(const RenderOptions& options) {
                       std::to_string(options.height) + " is outside 1x1 .. " +
                       std::to_string(raster::kMaxViewport) + "x" +
                       std::to_string(raster::kMaxViewport));
-  if (options.light_view_size < kMinLightView || options.light_view_size > kMaxLightView)
-    return make_error("light view size " + std::to_string(options.light_view_size) +
-                      " is outside " + std::to_string(kMinLightView) + " .. " +
-                      std::to_string(kMaxLightView));
+  if (auto ok = check_light_view_size(options.light_view_size); !ok)
+    return make_error("light view size " + ok.error().message);
+  return {};
+}
+
+Expected<void> check_light_view_size(int size) {
+  if (size < kMinLightView || size > kMaxLightView)
+    return make_error(std::to_string(size) + " is outside " + std::to_string(kMinLightView) +
+                      " .. " + std::to_string(kMaxLightView));
   return {};
 }
 
@@ -93,8 +98,8 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
 
 FrameStats& FrameStats::operator+=(const FrameStats& other) {
   using S = FrameStats;
-  for (double S::*ms : {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback,
-                        &S::ms_cull})
+  for (double S::*ms :
+       {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback, &S::ms_cull})
     this->*ms += other.*ms;
   cull_queries += other.cull_queries;
   for (std::size_t S::*n : {&S::triangles, &S::volume_primitives}) this->*n += other.*n;

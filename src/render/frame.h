@@ -172,8 +172,10 @@ struct Frame : SurfaceLayer {
   std::vector<std::vector<raster::TileWork>> object_tile_work;
 };
 
+// A light view's side (RenderOptions::light_view_size) within [kMinLightView, kMaxLightView].
+Expected<void> check_light_view_size(int size);
 // Checks an options struct a person filled in: size within the rasterizer's limits, the light
-// view's within [kMinLightView, kMaxLightView].
+// view's (check_light_view_size).
 Expected<void> check_options(const RenderOptions& options);
 // Checks a frame a person asked for: the options (check_options), every light of the scene
 // (check_light), and a generator that counts every surface of its transparent casters.

@@ -90,7 +90,10 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
       size_layer(out, lights, pixels, glass);
     }
     if (opaque && options.cull != Cull::none)
-      timed(*backend_, stats.ms_cull, [&] { culling_.cull(scene, options, plan_, &out, stats); });
+      timed(*backend_, stats.ms_cull, [&] {
+        culling_.cull(scene, options, plan_, options.cull == Cull::occlusion ? &out : nullptr,
+                      stats);
+      });
     for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out, read_back);
   };
   draw_layer(Layer::opaque, frame);
