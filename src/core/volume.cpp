@@ -3,6 +3,7 @@
 #include "core/volume.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <string>
@@ -72,6 +73,120 @@ inline CapWeights cap_weights(const Topology& topo, bool standard, bool dark_cap
 // extruded to infinity).
 inline bool has_dark_caps(const glm::vec4& light, const glm::vec4& far_plane) {
   return light.w != 0.0f || far_plane != kPlaneAtInfinity;
+}
+
+// --- clamped volumes (VolumeClamp) ---------------------------------------------------------
+
+// One face's term of an edge's multiplicity (Kim et al. §1.2), and the leaf that casts it.
+struct LeafTerm {
+  std::uint32_t leaf;
+  int term;
+};
+// Distinct leaves one edge's terms are summed over before their pieces are merged; an irregular
+// edge whose faces lie in more casts each face's term apart, which sums to the same counts.
+constexpr int kMaxEdgeLeaves = 16;
+
+// The stretches of depth over which terms of distinct leaves sum to a non-zero weight: emit(begin,
+// end, weight) for each, in order, adjacent stretches of one weight merged (§3.3: an edge shared
+// by two sub-objects is drawn only where their intervals differ, or its terms do not cancel).
+template <class Emit>
+void sweep_pieces(std::span<const LeafTerm> terms, const VolumeClamp& clamp, Emit&& emit) {
+  struct Cursor {
+    const DepthInterval* at;
+    const DepthInterval* end;
+    int term;
+    bool inside;
+  };
+  std::array<Cursor, kMaxEdgeLeaves> cursors;
+  int n = 0;
+  for (const LeafTerm& t : terms) {
+    const std::span<const DepthInterval> own = clamp.of_leaf(t.leaf);
+    if (t.term != 0 && !own.empty())
+      cursors[n++] = {own.data(), own.data() + own.size(), t.term, false};
+  }
+  int weight = 0;
+  float start = -INFINITY;
+  for (;;) {
+    float x = INFINITY;
+    bool any = false;
+    for (int i = 0; i < n; ++i)
+      if (cursors[i].at != cursors[i].end) {
+        x = std::min(x, cursors[i].inside ? cursors[i].at->end : cursors[i].at->begin);
+        any = true;
+      }
+    if (!any) break;
+    for (bool changed = true; changed;) {  // every boundary at x: enter, leave, enter the next
+      changed = false;
+      for (int i = 0; i < n; ++i) {
+        Cursor& c = cursors[i];
+        if (c.at == c.end) continue;
+        if (!c.inside && c.at->begin == x) {
+          c.inside = changed = true;
+        } else if (c.inside && c.at->end == x) {
+          c.inside = false;
+          ++c.at;
+          changed = true;
+        }
+      }
+    }
+    int after = 0;
+    for (int i = 0; i < n; ++i) after += cursors[i].inside ? cursors[i].term : 0;
+    if (after != weight) {
+      if (weight != 0) emit(start, x, weight);
+      start = x;
+      weight = after;
+    }
+  }
+}
+
+// The pieces edge e casts under `clamp`, emit(begin, end, weight) in a fixed order.
+template <class Emit>
+void edge_pieces(const Topology& topo, const VolumeClamp& clamp, bool robust, const std::int8_t* w,
+                 std::size_t e, Emit&& emit) {
+  const std::size_t regular = topo.regular_edge_count(), faces = topo.face_count();
+  std::array<LeafTerm, kMaxEdgeLeaves> terms;
+  int n = 0;
+  // Each face's term alone (robust, or too many leaves), or summed per leaf.
+  auto alone = [&](std::uint32_t f, int term) {
+    const LeafTerm t{clamp.leaf_of(f), term};
+    sweep_pieces(std::span(&t, 1), clamp, emit);
+  };
+  auto add = [&](std::uint32_t f, int term) {  // false when the leaves overflow
+    const std::uint32_t leaf = clamp.leaf_of(f);
+    int i = 0;
+    while (i < n && terms[i].leaf != leaf) ++i;
+    if (i == kMaxEdgeLeaves) return false;
+    if (i == n) terms[n++] = {leaf, 0};
+    terms[i].term += term;
+    return true;
+  };
+  if (e < regular) {
+    const IndexPair& f = topo.edge_faces[e];
+    const int t0 = w[f[0]], t1 = f[1] < faces ? -w[f[1]] : 0;
+    if (robust) {
+      if (t0 != 0) alone(f[0], t0);
+      if (t1 != 0) alone(f[1], t1);
+      return;
+    }
+    add(f[0], t0);
+    if (f[1] < faces) add(f[1], t1);
+  } else {
+    const std::span<const std::uint32_t> refs = irregular_refs(topo, e - regular);
+    bool fits = !robust;
+    for (std::uint32_t ref : refs) fits = fits && add(face_of(ref), edge_term(w, ref));
+    if (!fits) {
+      for (std::uint32_t ref : refs)
+        if (const int term = edge_term(w, ref); term != 0) alone(face_of(ref), term);
+      return;
+    }
+  }
+  sweep_pieces(std::span(terms.data(), static_cast<std::size_t>(n)), clamp, emit);
+}
+
+// Where the ray from p away from the light meets the plane depth = t (-inf: p itself).
+inline glm::vec4 segment_end(const glm::vec3& p, const glm::vec4& light, const VolumeClamp& clamp,
+                             float t, const glm::vec4& far_plane) {
+  return t == -INFINITY ? glm::vec4(p, 1.0f) : extrude(p, light, clamp.plane_at(t, far_plane));
 }
 
 }  // namespace
@@ -201,11 +316,21 @@ void compute_face_weights(const Topology& topo, const glm::vec4& light, Generato
 
 std::size_t find_casting_edges(const Topology& topo, Generator generator,
                                std::span<const std::int8_t> weights, IndexRange edges,
-                               std::vector<std::uint32_t>& casting) {
+                               std::vector<std::uint32_t>& casting, const VolumeClamp* clamp) {
   assert(generator != Generator::automatic);
   assert(weights.size() == weight_buffer_size(topo) && weights.back() == 0);
   const bool robust = generator == Generator::robust;
   const std::int8_t* w = weights.data();
+  if (clamp != nullptr) {  // every edge with a term may cast pieces: not the vectorised loop
+    std::size_t quads = 0;
+    for (std::size_t e = edges.begin; e < edges.end; ++e) {
+      std::size_t pieces = 0;
+      edge_pieces(topo, *clamp, robust, w, e, [&](float, float, int) { ++pieces; });
+      if (pieces > 0) casting.push_back(static_cast<std::uint32_t>(e));
+      quads += pieces;
+    }
+    return quads;
+  }
   std::size_t quads = 0;
   // Regular edges, the hot loop: the first face runs the edge along its stored direction and the
   // second against it (or is the always-0 extra slot), so the multiplicity is w(first) -
@@ -250,7 +375,8 @@ std::size_t find_casting_edges(const Topology& topo, Generator generator,
 
 void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
                  Generator generator, std::span<const std::int8_t> weights,
-                 std::span<const std::uint32_t> casting, PrimitiveSpan out) {
+                 std::span<const std::uint32_t> casting, PrimitiveSpan out,
+                 const VolumeClamp* clamp) {
   assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
   const bool robust = generator == Generator::robust;
   const std::int8_t* w = weights.data();
@@ -258,6 +384,22 @@ void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& 
   const IndexPair* faces = topo.edge_faces.data();
   const IndexPair* vertices = topo.edge_vertices.data();
   const std::size_t regular = topo.regular_edge_count();
+  if (clamp != nullptr) {  // each piece: the edge between the planes that bound it
+    for (const std::uint32_t e : casting) {
+      const IndexPair& uv = e < regular ? vertices[e] : topo.irregular_vertices[e - regular];
+      const glm::vec3& u = positions[uv[0]];
+      const glm::vec3& v = positions[uv[1]];
+      const std::uint32_t part = out.parts != nullptr ? topo.vertex_part[uv[0]] : 0;
+      edge_pieces(topo, *clamp, robust, w, e, [&](float begin, float end, int weight) {
+        out.vertices[0] = segment_end(u, light, *clamp, begin, far_plane);
+        out.vertices[1] = extrude(u, light, clamp->plane_at(end, far_plane));
+        out.vertices[2] = extrude(v, light, clamp->plane_at(end, far_plane));
+        out.vertices[3] = segment_end(v, light, *clamp, begin, far_plane);
+        finish_primitive(kQuadCorners, weight, part, out);
+      });
+    }
+    return;
+  }
   // Each casting edge needs its vertex pair and two positions from far-apart places in memory:
   // prefetch in two steps, the pair kAhead edges ahead, the positions kAhead / 2 ahead (whose
   // pair was asked for kAhead / 2 iterations ago), so that the misses overlap.
@@ -300,11 +442,22 @@ void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& 
 }
 
 CapCount count_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
-                    Generator generator, std::span<const std::int8_t> weights, IndexRange faces) {
+                    Generator generator, std::span<const std::int8_t> weights, IndexRange faces,
+                    const VolumeClamp* clamp) {
   assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
   const bool standard = generator == Generator::standard;
   const bool dark_caps = has_dark_caps(light, far_plane);
   CapCount count;
+  if (clamp != nullptr) {
+    for (std::size_t f = faces.begin; f < faces.end; ++f) {
+      if (weights[f] == 0) continue;  // no volume of its own (edge-on, zero area, standard's back)
+      for (const DepthInterval& i : clamp->of_leaf(clamp->leaf_of(f))) {
+        ++(i.begin == -INFINITY ? count.light : count.dark);
+        count.dark += i.end != INFINITY || dark_caps;
+      }
+    }
+    return count;
+  }
   for (std::size_t f = faces.begin; f < faces.end; ++f) {
     const CapWeights c = cap_weights(topo, standard, dark_caps, weights[f], f);
     count.light += c.light != 0;
@@ -315,11 +468,30 @@ CapCount count_caps(const Topology& topo, const glm::vec4& light, const glm::vec
 
 void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
                 Generator generator, std::span<const std::int8_t> weights, IndexRange faces,
-                PrimitiveSpan light_caps, PrimitiveSpan dark_caps) {
+                PrimitiveSpan light_caps, PrimitiveSpan dark_caps, const VolumeClamp* clamp) {
   assert(generator != Generator::automatic && weights.size() == weight_buffer_size(topo));
   const bool standard = generator == Generator::standard;
   const bool closed_far = has_dark_caps(light, far_plane);
   const std::uint32_t* fv = topo.face_vertices.data();
+  if (clamp != nullptr) {
+    for (std::size_t f = faces.begin; f < faces.end; ++f) {
+      const int w = weights[f];
+      if (w == 0) continue;
+      const std::array<glm::vec3, 3> p{topo.positions[fv[3 * f]], topo.positions[fv[3 * f + 1]],
+                                       topo.positions[fv[3 * f + 2]]};
+      const std::uint32_t part = light_caps.parts != nullptr ? topo.vertex_part[fv[3 * f]] : 0;
+      auto cap = [&](float t, int weight, PrimitiveSpan& out) {
+        write_triangle(segment_end(p[0], light, *clamp, t, far_plane),
+                       segment_end(p[1], light, *clamp, t, far_plane),
+                       segment_end(p[2], light, *clamp, t, far_plane), weight, part, out);
+      };
+      for (const DepthInterval& i : clamp->of_leaf(clamp->leaf_of(f))) {
+        cap(i.begin, w, i.begin == -INFINITY ? light_caps : dark_caps);
+        if (i.end != INFINITY || closed_far) cap(i.end, -w, dark_caps);
+      }
+    }
+    return;
+  }
   for (std::size_t f = faces.begin; f < faces.end; ++f) {
     const CapWeights c = cap_weights(topo, standard, closed_far, weights[f], f);
     if (c.light == 0 && c.dark == 0) continue;
@@ -337,23 +509,24 @@ void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& f
 }
 
 void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOptions& options,
-                  VolumeScratch& scratch, VolumeBuffer& out) {
+                  VolumeScratch& scratch, VolumeBuffer& out, const VolumeClamp* clamp) {
+  assert(clamp == nullptr || options.caps);
   const Generator generator = resolve_generator(options.generator, topo.report);
   out.clear();
   scratch.weights.assign(weight_buffer_size(topo), 0);
   compute_face_weights(topo, light, generator, {0, topo.face_count()}, scratch.weights);
   scratch.casting.clear();
-  const std::size_t quads =
-      find_casting_edges(topo, generator, scratch.weights, {0, topo.edge_count()}, scratch.casting);
+  const std::size_t quads = find_casting_edges(topo, generator, scratch.weights,
+                                               {0, topo.edge_count()}, scratch.casting, clamp);
   write_sides(topo, light, options.far_plane, generator, scratch.weights, scratch.casting,
-              out.sides.grow(quads, kQuadCorners, options.parts));
+              out.sides.grow(quads, kQuadCorners, options.parts), clamp);
   if (!options.caps) return;
   const IndexRange all_faces{0, topo.face_count()};
   const CapCount caps =
-      count_caps(topo, light, options.far_plane, generator, scratch.weights, all_faces);
+      count_caps(topo, light, options.far_plane, generator, scratch.weights, all_faces, clamp);
   write_caps(topo, light, options.far_plane, generator, scratch.weights, all_faces,
              out.light_caps.grow(caps.light, kTriangleCorners, options.parts),
-             out.dark_caps.grow(caps.dark, kTriangleCorners, options.parts));
+             out.dark_caps.grow(caps.dark, kTriangleCorners, options.parts), clamp);
 }
 
 }  // namespace shadowvol

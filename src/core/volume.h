@@ -30,7 +30,8 @@
 // drawn w times" (w < 0: drawn |w| times with the opposite winding).
 //
 // Where a volume ends: extruded to infinity (w = 0) by default, or ended on a finite far plane
-// (see kPlaneAtInfinity), the same volume cut where no receiver lies.
+// (see kPlaneAtInfinity), the same volume cut where no receiver lies. Clamped (VolumeClamp, CC
+// shadow volumes §3.2.1, §3.3): kept only over intervals of depth, per sub-object of the mesh.
 //
 // Spaces: everything is in the mesh's own space; pass the light and the far plane in that space
 // too (the inverse model matrix times the world light; the transpose of the model matrix times
@@ -42,6 +43,7 @@
 // threads (render/volume_builder.h does, with oneTBB) and get the same output in the same order.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -51,6 +53,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "core/expected.h"
@@ -168,6 +171,62 @@ struct VolumeBuffer {
   }
 };
 
+// CC shadow volumes' clamping (Lloyd, Wendt, Govindaraju and Manocha 2004, §3.2.1 and §3.3): the
+// volume kept only where its depth lies in one of the intervals of the sub-object (leaf) that
+// casts it, each piece (a segment) closed by caps where it starts and ends.
+//
+// Depth is the affine function depth(x) = dot(depth, (x, 1)) in the mesh's space (a light view's
+// axis), growing along every ray away from the light from each caster vertex (n . r > 0 in
+// extrude's terms). An interval [begin, end] of a leaf: begin -inf starts at the caster itself
+// (its light caps; a leaf's first interval must, so that it holds the leaf's own points), else
+// at the plane depth = begin, which lies beyond every vertex of the leaf's faces; end +inf
+// reaches the volume's far plane (VolumeOptions::far_plane), else the plane depth = end. A
+// segment is the volume between its two planes: side quads from the silhouette edge projected
+// onto the first to its projection onto the second, each face of weight w projected onto the
+// first plane (weight w) and onto the second (-w). A leaf is no closed mesh, so standard too
+// closes its segments by its front faces (not by its back faces, which cap a whole closed mesh
+// alike). Both caps lie in the scene, so every rule counts them (dark_caps holds both kinds);
+// only the light caps lie on surfaces.
+//
+// Sub-objects (§3.3): an edge between faces of two leaves casts, over each stretch of depth, the
+// sum of the terms of the leaves whose intervals hold it (the paper merges the occupied intervals
+// on both sides of a shared edge): where both sides are kept alike it casts what the whole mesh
+// casts, nothing for an edge that is no silhouette. The robust generator keeps weights +-1: each
+// face's term over its own leaf's intervals. A leaf without intervals casts nothing (culled).
+//
+// The law (volume_law_test.cpp): the count at P is the number of caster surfaces between P and
+// the light whose leaf holds depth(P) in one of its intervals.
+struct DepthInterval {
+  float begin = 0.0f, end = 0.0f;
+  bool operator==(const DepthInterval&) const = default;
+};
+
+struct VolumeClamp {
+  glm::vec4 depth{0.0f};
+  // Per face, its leaf; empty: every face in leaf 0. Points into storage the caller keeps alive
+  // while the clamp is used (the sub-objects of the mesh).
+  std::span<const std::uint32_t> face_leaf;
+  // Leaf k's intervals are intervals[offsets[k] .. offsets[k + 1]), sorted, disjoint.
+  std::vector<std::uint32_t> offsets;
+  std::vector<DepthInterval> intervals;
+
+  std::size_t leaf_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  std::span<const DepthInterval> of_leaf(std::size_t leaf) const {
+    return std::span(intervals).subspan(offsets[leaf], offsets[leaf + 1] - offsets[leaf]);
+  }
+  std::uint32_t leaf_of(std::size_t face) const { return face_leaf.empty() ? 0 : face_leaf[face]; }
+  // The plane depth = t as a far plane (kept side depth <= t); +inf: `far_plane`.
+  glm::vec4 plane_at(float t, const glm::vec4& far_plane) const {
+    return t == INFINITY ? far_plane : glm::vec4(glm::vec3(depth), depth.w - t);
+  }
+  // The same clamp: same depth, same leaves (by address) and intervals.
+  bool operator==(const VolumeClamp& o) const {
+    return depth == o.depth && face_leaf.data() == o.face_leaf.data() &&
+           face_leaf.size() == o.face_leaf.size() && offsets == o.offsets &&
+           intervals == o.intervals;
+  }
+};
+
 inline constexpr int kQuadCorners = 4;
 inline constexpr int kTriangleCorners = 3;
 // The one split of a side quad into two triangles that every consumer uses, so that neighbouring
@@ -199,26 +258,32 @@ inline std::size_t weight_buffer_size(const Topology& topo) { return topo.face_c
 //
 // find_casting_edges appends, in edge order, the edges of `edges` that cast side quads to
 // `casting` and returns how many quads they cast (one each; robust: one per face term).
+// `clamp`, where not null: the segments' quads (VolumeClamp).
 std::size_t find_casting_edges(const Topology& topo, Generator generator,
                                std::span<const std::int8_t> weights, IndexRange edges,
-                               std::vector<std::uint32_t>& casting);
+                               std::vector<std::uint32_t>& casting,
+                               const VolumeClamp* clamp = nullptr);
 // write_sides writes the quads of `casting`, in order, to `out` (room for the count
-// find_casting_edges returned).
+// find_casting_edges returned with the same clamp).
 void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
                  Generator generator, std::span<const std::int8_t> weights,
-                 std::span<const std::uint32_t> casting, PrimitiveSpan out);
+                 std::span<const std::uint32_t> casting, PrimitiveSpan out,
+                 const VolumeClamp* clamp = nullptr);
 
 // Caps in two steps likewise: count_caps says how many light and dark caps the faces in
-// `faces` have, write_caps writes them in face order.
+// `faces` have, write_caps writes them in face order (clamped: per face, its segments' caps in
+// order, the starting caps of segments that begin beyond the caster among the dark caps).
 struct CapCount {
   std::size_t light = 0;
   std::size_t dark = 0;
 };
 CapCount count_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
-                    Generator generator, std::span<const std::int8_t> weights, IndexRange faces);
+                    Generator generator, std::span<const std::int8_t> weights, IndexRange faces,
+                    const VolumeClamp* clamp = nullptr);
 void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& far_plane,
                 Generator generator, std::span<const std::int8_t> weights, IndexRange faces,
-                PrimitiveSpan light_caps, PrimitiveSpan dark_caps);
+                PrimitiveSpan light_caps, PrimitiveSpan dark_caps,
+                const VolumeClamp* clamp = nullptr);
 
 struct VolumeOptions {
   Generator generator = Generator::automatic;
@@ -239,8 +304,9 @@ struct VolumeScratch {
 };
 
 // The whole volume of one mesh for one light, on the calling thread: clears `out` and fills it
-// with sides, then (if options.caps) light and dark caps.
+// with sides, then (if options.caps) light and dark caps; clamped where `clamp` is not null (its
+// segments need their caps: options.caps must be set).
 void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOptions& options,
-                  VolumeScratch& scratch, VolumeBuffer& out);
+                  VolumeScratch& scratch, VolumeBuffer& out, const VolumeClamp* clamp = nullptr);
 
 }  // namespace shadowvol

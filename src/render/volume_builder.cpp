@@ -51,11 +51,11 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
       if (c < edge_chunks) {
         scratch.casting[c].clear();
         scratch.quads[c] = find_casting_edges(topo, generator, scratch.weights,
-                                              chunk_range(c, edges), scratch.casting[c]);
+                                              chunk_range(c, edges), scratch.casting[c], job.clamp);
       } else {
         scratch.caps[c - edge_chunks] =
             count_caps(topo, job.light, job.options.far_plane, generator, scratch.weights,
-                       chunk_range(c - edge_chunks, faces));
+                       chunk_range(c - edge_chunks, faces), job.clamp);
       }
     });
 
@@ -79,7 +79,7 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
         std::size_t before = 0;
         for (std::size_t k = 0; k < c; ++k) before += scratch.quads[k];
         write_sides(topo, job.light, job.options.far_plane, generator, scratch.weights,
-                    scratch.casting[c], advance(sides_at, before, kQuadCorners));
+                    scratch.casting[c], advance(sides_at, before, kQuadCorners), job.clamp);
       } else {
         CapCount before;
         for (std::size_t k = 0; k < c - edge_chunks; ++k) {
@@ -89,7 +89,7 @@ void VolumeBuilder::build(std::span<const VolumeJob> jobs) {
         write_caps(topo, job.light, job.options.far_plane, generator, scratch.weights,
                    chunk_range(c - edge_chunks, faces),
                    advance(light_at, before.light, kTriangleCorners),
-                   advance(dark_at, before.dark, kTriangleCorners));
+                   advance(dark_at, before.dark, kTriangleCorners), job.clamp);
       }
     });
   });

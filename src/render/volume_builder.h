@@ -23,7 +23,8 @@ struct VolumeJob {
   const Topology* topology = nullptr;
   glm::vec4 light{0.0f};  // homogeneous, in the mesh's own space (see core/volume.h)
   VolumeOptions options;
-  VolumeBuffer* out = nullptr;  // caller-owned; cleared and refilled
+  VolumeBuffer* out = nullptr;         // caller-owned; cleared and refilled
+  const VolumeClamp* clamp = nullptr;  // clamped (core/volume.h), or null
 };
 
 class VolumeBuilder {

@@ -14,6 +14,7 @@
 // new random sample. The test asserts that these replacements stay rare.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include <glm/common.hpp>
@@ -38,9 +39,14 @@ struct Counts {
 
 // Caster surfaces crossed by the segment from P to the light (the light itself excluded: a face
 // whose plane contains the light cannot be crossed before the light is reached).
-Counts caster_count(const Topology& topo, const HPoint& p, const HPoint& light, bool front_only) {
+// `counts(f)`: whether face f counts at all (a clamped volume's leaf holds P's depth).
+template <class Counted = bool (*)(std::size_t)>
+Counts caster_count(
+    const Topology& topo, const HPoint& p, const HPoint& light, bool front_only,
+    Counted&& counts = [](std::size_t) { return true; }) {
   Counts n;
   for (std::size_t f = 0; f < topo.face_count(); ++f) {
+    if (!counts(f)) continue;
     const HPoint x0 = testing::exact(glm::vec4(topo.positions[topo.face_vertices[3 * f]], 1));
     const HPoint x1 = testing::exact(glm::vec4(topo.positions[topo.face_vertices[3 * f + 1]], 1));
     const HPoint x2 = testing::exact(glm::vec4(topo.positions[topo.face_vertices[3 * f + 2]], 1));
@@ -92,13 +98,20 @@ HPoint direction(const HPoint& from, const HPoint& to) {
 // will do: the ray ends at infinity, beyond every finite far plane; at infinity, where dark caps
 // extruded to infinity lie, it meets one iff its direction is inside it, and beyond infinity
 // (the depth-clamped far plane) nothing is shadowed.
-Counts zfail_count(const VolumeBuffer& volume, const HPoint& p, const HPoint& end, bool finite) {
+Counts zfail_count(const VolumeBuffer& volume, const HPoint& p, const HPoint& end) {
   Counts n;
   add_crossings(volume.sides, kQuadCorners, p, end, n);
   add_crossings(volume.light_caps, kTriangleCorners, p, end, n);
   const PrimitiveList& dark = volume.dark_caps;
-  if (finite) add_crossings(dark, kTriangleCorners, p, end, n);
-  for (std::size_t i = 0; i < dark.size() && !finite; ++i) {
+  for (std::size_t i = 0; i < dark.size(); ++i) {
+    if (dark.vertices[3 * i].w != 0.0f) {  // a finite cap: crossed or not, like any other
+      PrimitiveList one;
+      const PrimitiveSpan at = one.grow(1, kTriangleCorners);
+      std::copy_n(&dark.vertices[3 * i], 3, at.vertices);
+      at.weights[0] = dark.weights[i];
+      add_crossings(one, kTriangleCorners, p, end, n);
+      continue;
+    }
     const HPoint x0 = testing::exact(dark.vertices[3 * i]),
                  x1 = testing::exact(dark.vertices[3 * i + 1]),
                  x2 = testing::exact(dark.vertices[3 * i + 2]);
@@ -151,8 +164,7 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
   VolumeScratch scratch;
   VolumeOptions options{generator, true};
   if (finite_far) options.far_plane = far_plane_beyond(topo, light, 40.0f);
-  const bool finite = options.far_plane != kPlaneAtInfinity;
-  if (finite_far && !finite) {
+  if (finite_far && options.far_plane == kPlaneAtInfinity) {
     ++stats.skipped_lights;
     return;
   }
@@ -219,7 +231,7 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
       // The ray away from O, or for point lights every other time the ray away from the light,
       // which ends on the dark caps whenever P is in shadow.
       const bool away_from_light = l[3] != 0 && sample % 4 >= 2;
-      zfail = zfail_count(volume, p, away_from_light ? direction(l, p) : direction(o, p), finite);
+      zfail = zfail_count(volume, p, away_from_light ? direction(l, p) : direction(o, p));
     } while ((expected.ambiguous || zpass.ambiguous || zfail.ambiguous) && tries < 50);
     ASSERT_LT(tries, 50) << "no unambiguous sample for " << named.name;
     ++stats.checked;
@@ -288,6 +300,158 @@ TEST_P(VolumeLaw, CountEqualsCasterSurfacesBetweenPointAndLight) {
             << stats.skipped_lights << " lights with no lit far point or no far plane, "
             << stats.beyond_far_plane << " drawn past a far plane\n";
 }
+
+// --- clamped volumes (core/volume.h VolumeClamp; CC shadow volumes §3.2.1, §3.3) ---------------
+
+// Whether depth(P) = dot(depth, P) / w lies in an interval of `intervals`; ambiguous on a bound.
+bool in_intervals(std::span<const DepthInterval> intervals, const glm::vec4& depth, const HPoint& p,
+                  bool& ambiguous) {
+  const std::int64_t scaled = std::int64_t(depth.x) * p[0] + std::int64_t(depth.y) * p[1] +
+                              std::int64_t(depth.z) * p[2] + std::int64_t(depth.w) * p[3];
+  bool inside = false;
+  for (const DepthInterval& i : intervals) {
+    for (float bound : {i.begin, i.end})
+      if (std::isfinite(bound) && scaled == std::int64_t(bound) * p[3]) ambiguous = true;
+    const bool after = i.begin == -INFINITY || scaled > std::int64_t(i.begin) * p[3];
+    const bool before = i.end == INFINITY || scaled < std::int64_t(i.end) * p[3];
+    inside = inside || (after && before);
+  }
+  return inside;
+}
+
+// Three leaves (faces by index, mod 3) of the mesh, clamped along integer depth planes that face
+// away from the light: leaf 0 kept near itself, over a gap, and from further on to the far plane;
+// leaf 1 over one long interval from itself; leaf 2 culled (no intervals) or kept whole. False
+// where no such depth exists (a point light among the vertices).
+bool make_test_clamp(const Topology& topo, const glm::vec4& light, bool cull_leaf2,
+                     std::vector<std::uint32_t>& face_leaf, VolumeClamp& clamp) {
+  const glm::vec3 l(light);
+  const glm::vec3 n = glm::round(-l / std::max({std::abs(l.x), std::abs(l.y), std::abs(l.z)}) *
+                                 (light.w == 0.0f ? 16.0f : 4.0f));
+  std::array<float, 3> deepest{-1e30f, -1e30f, -1e30f};
+  face_leaf.resize(topo.face_count());
+  for (std::size_t f = 0; f < topo.face_count(); ++f) {
+    face_leaf[f] = static_cast<std::uint32_t>(f % 3);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& p = topo.positions[topo.face_vertices[3 * f + k]];
+      if (light.w != 0.0f && glm::dot(n, p - l) <= 0.0f) return false;
+      deepest[f % 3] = std::max(deepest[f % 3], glm::dot(n, p));
+    }
+  }
+  const float unit = glm::length(n);
+  auto at = [&](int leaf, float steps) { return std::ceil(deepest[leaf] + steps * unit); };
+  clamp.depth = glm::vec4(n, 0.0f);
+  clamp.face_leaf = face_leaf;
+  clamp.intervals = {
+      {-INFINITY, at(0, 4)}, {at(0, 25), at(0, 50)}, {at(0, 80), INFINITY}, {-INFINITY, at(1, 60)}};
+  clamp.offsets = {0, 3, 4, 4};
+  if (!cull_leaf2) {
+    clamp.intervals.push_back({-INFINITY, INFINITY});
+    clamp.offsets.back() = 5;
+  }
+  return true;
+}
+
+struct ClampedLawStats {
+  int checked = 0, in_shadow = 0, clamped_away = 0, lights = 0;
+  std::vector<std::string> failures;
+};
+
+void check_clamped_law(const testing::NamedMesh& named, const glm::vec4& light, Generator generator,
+                       bool cull_leaf2, std::mt19937& rng, ClampedLawStats& stats) {
+  const Topology topo = build_topology(named.mesh);
+  std::vector<std::uint32_t> face_leaf;
+  VolumeClamp clamp;
+  if (!make_test_clamp(topo, light, cull_leaf2, face_leaf, clamp)) return;
+  VolumeBuffer volume;
+  VolumeScratch scratch;
+  build_volume(topo, light, {generator, true}, scratch, volume, &clamp);
+  const bool front_only = resolve_generator(generator, topo.report) == Generator::standard;
+  const HPoint l = testing::exact(light);
+  std::uniform_int_distribution<int> far(-3000, 3000);
+  HPoint o{};
+  bool found = false;
+  for (int attempt = 0; attempt < 200 && !found; ++attempt) {
+    o = {far(rng), far(rng), far(rng), 1};
+    const Counts c = caster_count(topo, o, l, false);
+    found = !c.ambiguous && c.value == 0;
+  }
+  if (!found) return;
+  ++stats.lights;
+  constexpr int kGrid = 7;
+  std::uniform_int_distribution<std::size_t> pick_face(0, topo.face_count() - 1);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int sample = 0; sample < 80; ++sample) {
+    HPoint p{};
+    Counts expected, all, zpass, zfail;
+    int tries = 0;
+    do {
+      // Behind a random face point, as far again as the light is (or 6 units of a directional
+      // light's direction): across the gaps and intervals.
+      const std::size_t f = pick_face(rng);
+      float a = unit(rng), b = unit(rng);
+      if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+      const glm::vec3 q = topo.positions[topo.face_vertices[3 * f]] * (1.0f - a - b) +
+                          topo.positions[topo.face_vertices[3 * f + 1]] * a +
+                          topo.positions[topo.face_vertices[3 * f + 2]] * b;
+      const glm::vec3 away = light.w == 0.0f ? -glm::vec3(light) * 6.0f : q - glm::vec3(light);
+      const glm::vec3 pp = glm::round((q + away * unit(rng) * 1.5f) * float(kGrid));
+      p = {std::int64_t(pp.x), std::int64_t(pp.y), std::int64_t(pp.z), kGrid};
+      bool ambiguous = false;
+      std::array<bool, 3> held{};
+      for (std::uint32_t k = 0; k < 3; ++k)
+        held[k] = in_intervals(clamp.of_leaf(k), clamp.depth, p, ambiguous);
+      expected = caster_count(topo, p, l, front_only,
+                              [&](std::size_t face) { return held[face_leaf[face]]; });
+      all = caster_count(topo, p, l, front_only);
+      expected.ambiguous = expected.ambiguous || ambiguous;
+      zpass = zpass_count(volume, o, p);
+      zfail = zfail_count(volume, p, direction(o, p));
+    } while ((expected.ambiguous || zpass.ambiguous || zfail.ambiguous) && ++tries < 50);
+    ASSERT_LT(tries, 50) << "no unambiguous sample for " << named.name;
+    ++stats.checked;
+    stats.in_shadow += expected.value != 0;
+    stats.clamped_away += all.value != expected.value;
+    if (zpass.value != expected.value || zfail.value != expected.value) {
+      std::ostringstream msg;
+      msg << named.name << " generator=" << to_string(generator) << " light=(" << light.x << ","
+          << light.y << "," << light.z << "," << light.w << ") P=(" << p[0] << "," << p[1] << ","
+          << p[2] << ")/" << p[3] << ": surfaces held=" << expected.value
+          << " zpass=" << zpass.value << " zfail=" << zfail.value;
+      stats.failures.push_back(msg.str());
+    }
+  }
+}
+
+class ClampedVolumeLaw : public ::testing::TestWithParam<Generator> {};
+
+// A clamped volume counts, at every point, the caster surfaces towards the light whose leaf holds
+// the point's depth; the pieces of edges shared by two leaves included.
+TEST_P(ClampedVolumeLaw, CountEqualsHeldCasterSurfaces) {
+  const Generator generator = GetParam();
+  std::mt19937 rng(77u + static_cast<unsigned>(generator));
+  ClampedLawStats stats;
+  for (const testing::NamedMesh& named : testing::adversarial_meshes(42)) {
+    if (generator == Generator::standard && !build_topology(named.mesh).report.closed_manifold)
+      continue;
+    for (int i = 0; i < 6; ++i)
+      check_clamped_law(named, random_light(rng, i % 3 == 2), generator, i % 2 == 0, rng, stats);
+  }
+  for (std::size_t i = 0; i < std::min<std::size_t>(stats.failures.size(), 10); ++i)
+    ADD_FAILURE() << stats.failures[i];
+  EXPECT_TRUE(stats.failures.empty())
+      << stats.failures.size() << " of " << stats.checked << " samples broke the law";
+  EXPECT_GE(stats.lights, generator == Generator::standard ? 12 : 40);
+  EXPECT_GT(stats.in_shadow, stats.checked / 5);      // some held shadows to count
+  EXPECT_GT(stats.clamped_away, stats.checked / 10);  // and some clamped away
+  std::cout << "[ law ] clamped " << to_string(generator) << ": " << stats.checked << " samples, "
+            << stats.in_shadow << " in a held shadow, " << stats.clamped_away << " clamped away\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllGenerators, ClampedVolumeLaw,
+                         ::testing::Values(Generator::multiplicity, Generator::robust,
+                                           Generator::standard),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
 
 INSTANTIATE_TEST_SUITE_P(AllGenerators, VolumeLaw,
                          ::testing::Values(Generator::multiplicity, Generator::robust,

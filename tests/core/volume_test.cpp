@@ -221,5 +221,59 @@ TEST(Generators, ParseResolveAndCheck) {
   EXPECT_TRUE(check_generator(Generator::multiplicity, open.report, "open").ok());
 }
 
+// CC shadow volumes §3.3: a square of two triangles under a light straight above, its triangles
+// in two leaves. Kept alike, the shared diagonal cancels: 4 quads, as for one leaf. Kept apart,
+// the diagonal casts where only one side's interval holds it.
+TEST(Volume, ClampedLeavesDrawASharedEdgeOnlyWhereTheirIntervalsDiffer) {
+  Mesh square;
+  square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  square.indices = {0, 1, 2, 0, 2, 3};  // facing +z, the light
+  const Topology topo = build_topology(square);
+  const std::vector<std::uint32_t> leaves{0, 1};
+  VolumeClamp clamp;
+  clamp.depth = {0, 0, -1, 0};  // depth = -z: growing downwards, away from the light
+  clamp.face_leaf = leaves;
+  auto build_clamped = [&] {
+    VolumeBuffer out;
+    VolumeScratch scratch;
+    build_volume(topo, {0.5f, 0.5f, 10, 1}, {Generator::multiplicity, true}, scratch, out, &clamp);
+    return out;
+  };
+  clamp.intervals = {{-INFINITY, 1}, {3, 4}, {-INFINITY, 1}, {3, 4}};
+  clamp.offsets = {0, 2, 4};
+  VolumeBuffer alike = build_clamped();
+  EXPECT_EQ(alike.sides.size(), 8u);  // 4 boundary edges x 2 segments, no diagonal
+  EXPECT_EQ(alike.light_caps.size(), 2u);
+  EXPECT_EQ(alike.dark_caps.size(), 6u);  // per face: the far cap at 1, both caps of [3, 4]
+  // The second segment of an edge starts on the plane z = -3 and ends on z = -4.
+  for (std::size_t q = 0; q < alike.sides.size(); ++q) {
+    const glm::vec4* v = &alike.sides.vertices[4 * q];
+    const float start = v[0].z / v[0].w, end = v[1].z / v[1].w;
+    EXPECT_TRUE((start == 0 && end == -1) || (start == -3 && end == -4)) << q;
+  }
+  clamp.intervals = {{-INFINITY, 1}, {-INFINITY, 4}};  // leaf 1 reaches on to 4
+  clamp.offsets = {0, 1, 2};
+  VolumeBuffer apart = build_clamped();
+  // 4 boundary edges once each, the diagonal once: from 1 to 4, leaf 1's term alone.
+  ASSERT_EQ(apart.sides.size(), 5u);
+  int diagonal = 0;
+  for (std::size_t q = 0; q < apart.sides.size(); ++q) {
+    const glm::vec4* v = &apart.sides.vertices[4 * q];
+    if (v[0].w == 1.0f) continue;  // starts at the caster: a boundary edge
+    ++diagonal;
+    EXPECT_FLOAT_EQ(v[0].z / v[0].w, -1.0f);
+    EXPECT_FLOAT_EQ(v[1].z / v[1].w, -4.0f);
+    EXPECT_EQ(std::abs(apart.sides.weights[q]), 1);
+  }
+  EXPECT_EQ(diagonal, 1);
+  // Leaf 0 culled: leaf 1's triangle alone, its three edges and caps.
+  clamp.intervals = {{-INFINITY, 4}};
+  clamp.offsets = {0, 0, 1};
+  VolumeBuffer one = build_clamped();
+  EXPECT_EQ(one.sides.size(), 3u);
+  EXPECT_EQ(one.light_caps.size(), 1u);
+  EXPECT_EQ(one.dark_caps.size(), 1u);
+}
+
 }  // namespace
 }  // namespace shadowvol
