@@ -60,19 +60,27 @@ inline float plane_distance(int plane, const glm::vec4& v) {
   }
 }
 
-// Clipped against every plane in turn (clip_polygon.h: watertight along every cut).
-constexpr int kMaxPolygon = 3 + kPlanes;
+// Clipped against every plane in turn (clip_polygon.h: watertight along every cut), then the
+// draw's own (ClipPlanes).
+constexpr int kMaxPolygon = 3 + kPlanes + 2;
 struct Polygon {
   std::array<glm::vec4, kMaxPolygon> v;
   int n = 0;
 };
 
-bool clip(const glm::vec4* tri, Polygon& out, bool& clipped) {
+bool clip(const glm::vec4* tri, const ClipPlanes& extra, Polygon& out, bool& clipped) {
   out.v[0] = tri[0], out.v[1] = tri[1], out.v[2] = tri[2], out.n = 3;
   clipped = false;
   for (int plane = 0; plane < kPlanes; ++plane) {
     clipped |= clip_polygon(out.v, out.n,
                             [plane](const glm::vec4& v) { return plane_distance(plane, v); });
+    if (out.n < 3) return false;
+  }
+  for (int k = 0; k < extra.count; ++k) {
+    const glm::vec4 plane = extra.planes[k];
+    clipped |= clip_polygon(out.v, out.n, [plane](const glm::vec4& v) {
+      return plane.x * v.x + plane.y * v.y + plane.z * v.z + plane.w * v.w;
+    });
     if (out.n < 3) return false;
   }
   return true;
@@ -477,7 +485,8 @@ Target::Scratch& scratch_of(Target& target) {
 
 // Clips, projects and sets up every triangle of a draw, chunks of kSetupChunk in parallel, into
 // the scratch's chunks, in order, with the tile rows each set-up triangle overlaps.
-void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters) {
+void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+             const ClipPlanes& extra = {}) {
   assert(triangles.size() % 3 == 0);
   Target::Scratch& scratch = scratch_of(target);
   const std::size_t n = triangles.size() / 3;
@@ -496,7 +505,7 @@ void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& cou
       ++chunk.counters.triangles_in;
       Polygon poly;
       bool clipped = false;
-      if (!clip(&triangles[3 * t], poly, clipped)) {
+      if (!clip(&triangles[3 * t], extra, poly, clipped)) {
         ++chunk.counters.triangles_clipped;
         ++chunk.counters.triangles_culled;
         continue;
@@ -597,11 +606,11 @@ CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::ve
 
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
-                 DepthBounds bounds, const SplitPlane& split) {
+                 DepthBounds bounds, const SplitPlane& split, const ClipPlanes& clip) {
   assert(weights.size() * 3 == triangles.size());
   assert(target.tile_work.empty() ||
          target.tile_work.size() == static_cast<std::size_t>(target.tiles_x) * target.tiles_y);
-  prepare(target, triangles, counters);
+  prepare(target, triangles, counters, clip);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
   // one. It is accepted whole when every fragment passes against every stored depth, within the
@@ -617,7 +626,8 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
         return TileDecision{TileVerdict::skip, picked};
       if (rule == CountRule::split) tile_rule = picked;
     }
-    if (tile_rule == CountRule::prefill) return TileDecision{TileVerdict::accept, tile_rule};
+    if (tile_rule == CountRule::prefill || tile_rule == CountRule::fill)
+      return TileDecision{TileVerdict::accept, tile_rule};
     if (tile.zmax < bounds.zmin || tile.zmin > bounds.zmax)
       return TileDecision{TileVerdict::skip, tile_rule};
     const bool within_bounds = bounds.zmin <= tile.zmin && tile.zmax <= bounds.zmax;
@@ -652,6 +662,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
           // Depth as z-pass tests it: prefill and cover too; behind tests as z-fail does.
           const bool zpass = tile_rule != CountRule::zfail && tile_rule != CountRule::behind;
           const std::int32_t delta = tile_rule == CountRule::zfail ? -front_delta : front_delta;
+          if (tile_rule == CountRule::fill) return covered;  // touched, nothing written
           if constexpr (checks == TileVerdict::accept) {
             store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
                       lanes);
@@ -666,7 +677,8 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
           return pass;
         });
   });
-  counters.count_updates += counters.pixels_passed - passed_before;  // every pass writes
+  if (rule != CountRule::fill)
+    counters.count_updates += counters.pixels_passed - passed_before;  // every pass writes
 }
 
 }  // namespace shadowvol::raster

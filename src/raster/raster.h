@@ -24,6 +24,7 @@
 //     default front face) is front-facing.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -130,6 +131,10 @@ enum class CountRule {
   // Fragments at or behind the stored depth add the weight whichever way they face: how many
   // surfaces lie beyond the stored one (what z-fail would count there; soft/split_sampler.h).
   behind,
+  // Every covered pixel, whatever its depth, and nothing written: the draw's pixels_processed
+  // (and pixels_passed) are its fill, CC shadow volumes' measure (Lloyd et al. 2004 §4: pixels
+  // touched with the depth test off). Depth bounds do not apply.
+  fill,
 };
 
 // Which tiles a draw counts in, by the rule a split plane picks for them (Laine 2005 §3.3): a
@@ -160,13 +165,23 @@ struct DepthBounds {
   float zmax = 1.0f;
 };
 
+// Up to two more clip planes for a draw (clip space, keeping dot(plane, v) >= 0), clipped like
+// the near plane: CC shadow volumes' discrete clamping (Lloyd et al. 2004 §3.2.2) draws a volume
+// only within strips of the image, between planes through the eye.
+struct ClipPlanes {
+  std::array<glm::vec4, 2> planes{};
+  int count = 0;
+};
+
 // Count pass: each triangle changes the count of the pixels it covers by its signed weight
 // (weights[t], one per triangle), by the rule above, in one write; depth is not written. Tiles
 // whose depth bounds prove that no pixel can pass the rule's test, or whose depths all lie
 // outside `bounds`, are skipped whole. `split.plane` picks each tile's rule under
 // CountRule::split, and limits any rule's draw to some tiles when split.tiles is not `all`.
+// `clip`: what of each triangle is drawn (ClipPlanes).
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
-                 DepthBounds bounds = {}, const SplitPlane& split = {});
+                 DepthBounds bounds = {}, const SplitPlane& split = {},
+                 const ClipPlanes& clip = {});
 
 }  // namespace shadowvol::raster

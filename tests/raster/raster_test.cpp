@@ -441,5 +441,47 @@ TEST(Raster, TheSplitTestTakesTheMiddleOfTheTilesDepths) {
   EXPECT_EQ(rule(0.9f), CountRule::zfail);
 }
 
+// CC shadow volumes' measures: `fill` touches every covered pixel whatever its depth and writes
+// nothing; the draw's own clip planes keep one side of a line through the eye, exactly where a
+// pixel's centre lies.
+TEST(Raster, FillCountsCoveredPixelsAndClipPlanesKeepTheirSide) {
+  const int w = 40, h = 30;
+  Target target(w, h);
+  target.clear_depth(1.0f);  // every stored depth nearest: z-pass would pass nowhere
+  std::vector<glm::vec4> tris;
+  add_ndc(tris, {-1, -1}, {1, -1}, {1, 1});
+  add_ndc(tris, {-1, -1}, {1, 1}, {-1, 1});  // the whole viewport
+  const std::vector<std::int32_t> weights(2, 3);
+  Counters fill;
+  draw_counts(target, tris, weights, CountRule::fill, fill);
+  EXPECT_EQ(fill.pixels_processed, std::uint64_t(w * h));
+  EXPECT_EQ(fill.pixels_passed, std::uint64_t(w * h));
+  EXPECT_EQ(fill.count_updates, 0u);
+  EXPECT_TRUE(std::all_of(target.count.begin(), target.count.end(), [](int c) { return c == 0; }));
+  // Keep x >= 0.25 w in clip space: the columns whose centres lie right of x_ndc = 0.25.
+  ClipPlanes right;
+  right.planes[0] = {1, 0, 0, -0.25f};
+  right.count = 1;
+  Counters clipped;
+  target.clear_depth(0.0f);
+  draw_counts(target, tris, weights, CountRule::zpass, clipped, {}, {}, right);
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px)
+      EXPECT_EQ(target.count[py * w + px], ndc_of_pixel(px, py, w, h).x > 0.25f ? 3 : 0)
+          << px << "," << py;
+  // A strip between two such planes, and fill within it.
+  ClipPlanes strip = right;
+  strip.planes[1] = {-1, 0, 0, 0.5f};  // x <= 0.5 w
+  strip.count = 2;
+  Counters strip_fill;
+  draw_counts(target, tris, weights, CountRule::fill, strip_fill, {}, {}, strip);
+  int columns = 0;
+  for (int px = 0; px < w; ++px) {
+    const float x = ndc_of_pixel(px, 0, w, h).x;
+    columns += x > 0.25f && x < 0.5f;
+  }
+  EXPECT_EQ(strip_fill.pixels_processed, std::uint64_t(columns * h));
+}
+
 }  // namespace
 }  // namespace shadowvol::raster
