@@ -67,8 +67,18 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
                   "them) or occlusion (receivers the image shows; casters in shadow or whose "
                   "shadow is unseen, tested conservatively in the light's views)")
       ->capture_default_str();
+  cmd->add_option("--clamp", args.clamp,
+                  "CC shadow volumes' clamping of volumes to where receivers lie: none, "
+                  "continuous (per caster, the intervals of depth from the light that hold "
+                  "receivers' boxes), discrete (only the strips of the image where a visible "
+                  "point may lie in the caster's shadow) or both")
+      ->capture_default_str();
+  cmd->add_option(
+         "--slices", args.slices,
+         "--clamp discrete or both: the strips of the image, 1 .. " + std::to_string(kMaxSlices))
+      ->capture_default_str();
   cmd->add_option("--light-view", args.light_view,
-                  "--cull: the side of each light view, in pixels (a cube's faces each)")
+                  "--cull, --clamp: the side of each light view, in pixels (a cube's faces each)")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   if (with_backend)
@@ -117,6 +127,10 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!split_parts) return split_parts.error();
   auto cull = parsed("--cull", args.cull, parse_cull);
   if (!cull) return cull.error();
+  auto clamp = parsed("--clamp", args.clamp, parse_clamp);
+  if (!clamp) return clamp.error();
+  if (auto ok = check_slices(args.slices); !ok)
+    return make_error("--slices: " + ok.error().message);
   auto backend = parsed("--backend", args.backend, parse_backend);
   if (!backend) return backend.error();
   auto volumes = parsed("--volumes", args.volumes, gl::parse_volume_path);
@@ -127,6 +141,8 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   options.split_planes = *split_planes;
   options.split_parts = *split_parts;
   options.cull = *cull;
+  options.clamp = *clamp;
+  options.slices = args.slices;
   options.light_view_size = args.light_view;
   if (auto ok = check_light_view_size(args.light_view); !ok)
     return make_error("--light-view: " + ok.error().message);
@@ -151,7 +167,14 @@ std::string method_label(const RenderOptions& options) {
          (whole ? " (one plane per object)" : "") +
          (options.extrusion == Extrusion::bounded ? " (bounded)" : "") +
          (options.cull != Cull::none ? " (culled by " + std::string(to_string(options.cull)) + ")"
-                                     : "");
+                                     : "") +
+         (options.clamp != Clamp::none
+              ? " (clamped " + std::string(to_string(options.clamp)) +
+                    (clamps_discrete(options.clamp)
+                         ? ", " + std::to_string(options.slices) + " slices"
+                         : "") +
+                    ")"
+              : "");
 }
 
 }  // namespace shadowvol::cli

@@ -50,6 +50,8 @@ struct FrameArgs {
   std::string split_planes = "sampled";
   std::string split_parts = "each";
   std::string cull = "none";
+  std::string clamp = "none";
+  int slices = kDefaultSlices;
   int light_view = 512;
 };
 // `with_backend`: false for the viewer, which is OpenGL by nature.

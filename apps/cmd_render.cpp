@@ -36,9 +36,23 @@ void print_stats(const FrameStats& s, bool counts_work) {
   if (s.light_views > 0)
     std::printf(
         "  culling %.1f ms: %d light views, %llu queries, casters culled in shadow %d, for "
-        "unseen shadows %d\n",
+        "unseen shadows %d, sub-objects culled %d\n",
         s.ms_cull, s.light_views, ull(s.cull_queries), s.casters_culled_in_shadow,
-        s.casters_culled_unseen);
+        s.casters_culled_unseen, s.sub_objects_culled);
+  if (s.volume_costs.measured())
+    std::printf("  volume costs (measured at start): v %.3g ms per vertex, r %.3g ms per pixel\n",
+                s.volume_costs.ms_per_vertex, s.volume_costs.ms_per_pixel);
+  if (s.ms_clamp > 0 || s.volumes_clamped > 0 || s.slice_queries > 0)
+    std::printf(
+        "  clamping %.1f ms: %d volumes clamped continuously (%llu overlapping pairs, %llu "
+        "sort interchanges, %llu intervals merged as V > R), %llu slice queries, %d volumes in "
+        "no slice\n",
+        s.ms_clamp, s.volumes_clamped, ull(s.clamp_pairs), ull(s.clamp_swaps),
+        ull(s.intervals_merged_by_cost), ull(s.slice_queries), s.volumes_clamped_away);
+  std::printf("  %llu volume segments drawn", ull(s.volume_segments));
+  if (s.fill > 0 || s.stencil_writes > 0)
+    std::printf(", fill %llu pixels, stencil writes %llu", ull(s.fill), ull(s.stencil_writes));
+  std::printf("\n");
   if (counts_work)
     std::printf(
         "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
@@ -63,6 +77,7 @@ int run(const RenderArgs& args) {
   RenderOptions options = resolved->options;
   options.show_volumes = args.show_volumes;
   options.tile_work = !args.heatmap.empty();
+  options.count_fill = args.stats;
   auto renderer = make_frame_renderer(*resolved, options);
   if (!renderer) return fail(renderer.error().message);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -78,11 +79,16 @@ void LightViews::set_view(View& view, bool perspective, const glm::dvec3& origin
   view.seen.resize(std::max<std::size_t>(view.seen.size(), 1));
   view.seen[0].assign(pixels, kFar);
   view.receiver.assign(pixels, -kFar);
+  const std::size_t layers = depths ? static_cast<std::size_t>(layers_) : 0;
+  view.layer_receiver.resize(std::max(view.layer_receiver.size(), layers));
+  view.layer_kept.resize(std::max(view.layer_kept.size(), layers));
+  for (std::size_t k = 0; k < layers; ++k) view.layer_receiver[k].assign(pixels, -kFar);
 }
 
 void LightViews::fit(const glm::dvec4& light, const std::vector<Box>& receivers, int size,
-                     bool depths) {
+                     bool depths, int layers) {
   size_ = size;
+  layers_ = depths ? layers : 0;
   views_count_ = 0;
   kept_ = occluders_ = false;
   std::vector<glm::dvec3> points;
@@ -413,15 +419,30 @@ void LightViews::add_occluder(const Occluder& occluder, OccluderScratch& scratch
   }
 }
 
-void LightViews::add_receiver_points(std::span<const glm::dvec3> points) {
+void LightViews::add_receiver_points(std::span<const glm::dvec3> points,
+                                     std::span<const LayerRange> layers) {
+  assert(layers.empty() || layers.size() == points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        if (std::isfinite(points[i].x)) add_receiver_point(points[i]);
+                        if (std::isfinite(points[i].x))
+                          add_receiver_point(points[i], layers.empty() ? LayerRange{} : layers[i]);
                     });
 }
 
-void LightViews::splat_receiver(View& view, const glm::dvec3& p) {
+namespace {
+
+// Raises the stored depth to `depth` at least; several threads may draw at once.
+void raise_to(float& stored_depth, float depth) {
+  std::atomic_ref<float> stored(stored_depth);
+  float now = stored.load(std::memory_order_relaxed);
+  while (now < depth && !stored.compare_exchange_weak(now, depth, std::memory_order_relaxed)) {
+  }
+}
+
+}  // namespace
+
+void LightViews::splat_receiver(View& view, const glm::dvec3& p, LayerRange layers) {
   glm::dvec3 s;
   if (!project(view, p, s)) return;
   const float depth = round_up(s.z);
@@ -429,19 +450,18 @@ void LightViews::splat_receiver(View& view, const glm::dvec3& p) {
   const int x1 = std::min(size_ - 1, static_cast<int>(std::floor(s.x + kPixelSlack)));
   const int y0 = std::max(0, static_cast<int>(std::floor(s.y - kPixelSlack)));
   const int y1 = std::min(size_ - 1, static_cast<int>(std::floor(s.y + kPixelSlack)));
+  const int last = std::min<int>(layers.last, layers_ - 1);
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
-      // Points may be added from several threads at once: the maximum is taken atomically.
-      std::atomic_ref<float> stored(view.receiver[static_cast<std::size_t>(y) * size_ + x]);
-      float now = stored.load(std::memory_order_relaxed);
-      while (now < depth && !stored.compare_exchange_weak(now, depth, std::memory_order_relaxed)) {
-      }
+      const std::size_t i = static_cast<std::size_t>(y) * size_ + x;
+      raise_to(view.receiver[i], depth);
+      for (int k = layers.first; k <= last; ++k) raise_to(view.layer_receiver[k][i], depth);
     }
 }
 
-void LightViews::add_receiver_point(const glm::dvec3& p) {
+void LightViews::add_receiver_point(const glm::dvec3& p, LayerRange layers) {
   if (!cube()) {
-    for (View& view : active()) splat_receiver(view, p);
+    for (View& view : active()) splat_receiver(view, p, layers);
     return;
   }
   // A cube face holds the directions whose largest component runs along its axis (faces
@@ -453,12 +473,13 @@ void LightViews::add_receiver_point(const glm::dvec3& p) {
   const double largest = mag[axis];
   for (int k = 0; k < 3; ++k) {
     if (k != axis && mag[k] < (1.0 - 1e-5) * largest) continue;
-    splat_receiver(views_[2 * k + (rel[k] < 0.0)], p);
+    splat_receiver(views_[2 * k + (rel[k] < 0.0)], p, layers);
   }
 }
 
 void LightViews::add_receiver_triangle(const glm::dvec3& a, const glm::dvec3& b,
-                                       const glm::dvec3& c) {
+                                       const glm::dvec3& c, LayerRange layers) {
+  const int last = std::min<int>(layers.last, layers_ - 1);
   for (View& view : active()) {
     auto to_screen = [&](const glm::dvec3& p, double d) { return to_pixels(view, p, d); };
     std::array<ScreenTriangle, 2> fan;
@@ -481,8 +502,10 @@ void LightViews::add_receiver_triangle(const glm::dvec3& a, const glm::dvec3& b,
         for (int x = x0; x <= x1; ++x) {
           // A degenerate triangle keeps its whole box.
           if (area != 0.0 && !edges.may_touch(x, y)) continue;
-          float& stored = view.receiver[static_cast<std::size_t>(y) * size_ + x];
-          stored = std::max(stored, depth);
+          const std::size_t i = static_cast<std::size_t>(y) * size_ + x;
+          view.receiver[i] = std::max(view.receiver[i], depth);
+          for (int k = layers.first; k <= last; ++k)
+            view.layer_receiver[k][i] = std::max(view.layer_receiver[k][i], depth);
         }
     }
   }
@@ -572,6 +595,16 @@ void LightViews::finish(bool occluders, bool receivers) {
       kept[i] = receivers ? std::min(seen[i], view.receiver[i]) : seen[i];
     if (occluders) build_pyramid(view.seen, size_);
     build_pyramid(view.kept, size_);
+    const std::vector<float>& occluder = view.seen[0];  // the pyramid may have moved it
+    tbb::parallel_for(0, layers_, [&](int k) {
+      std::vector<std::vector<float>>& layer = view.layer_kept[k];
+      layer.resize(std::max<std::size_t>(layer.size(), 1));
+      layer[0].resize(occluder.size());
+      const std::vector<float>& receiver = view.layer_receiver[k];
+      for (std::size_t i = 0; i < occluder.size(); ++i)
+        layer[0][i] = std::min(occluder[i], receiver[i]);
+      build_pyramid(layer, size_);
+    });
   }
 }
 
@@ -604,6 +637,84 @@ bool LightViews::any_at_least(const std::vector<std::vector<float>>& pyramid,
     for (int tx = rect.x0 >> level; tx <= rect.x1 >> level; ++tx)
       if (descend(pyramid, rect, level, tx, ty)) return true;
   return false;
+}
+
+bool LightViews::kept_in_layer(const Box& box, int layer, std::uint64_t& queries) const {
+  assert(layer >= 0 && layer < layers_);
+  if (box.empty() || views_count_ == 0) return false;
+  if (about_light(box)) return true;
+  for (const View& view : active()) {
+    Rect rect;
+    bool untestable = false;
+    if (!box_rect(view, box, rect, untestable)) {
+      if (untestable) return true;
+      continue;
+    }
+    ++queries;
+    if (any_at_least(view.layer_kept[static_cast<std::size_t>(layer)], rect)) return true;
+  }
+  return false;
+}
+
+bool LightViews::light_box(std::size_t v, const Box& box, bool caster, LightBox& out) const {
+  const View& view = views_[v];
+  if (box.empty()) return false;
+  const std::array<glm::dvec3, 8> c = corners(box);
+  std::array<double, 8> d;
+  int beyond = 0;
+  for (int i = 0; i < 8; ++i) {
+    d[i] = glm::dot(c[i] - view.origin, view.axis);
+    beyond += !view.perspective || d[i] >= view.near;
+  }
+  if (beyond == 0 || (caster && beyond < 8)) return false;
+  // The corners beyond the near plane and where the box's edges cross it.
+  std::array<glm::dvec3, 20> points;
+  std::array<double, 20> depth;
+  int n = 0;
+  for (int i = 0; i < 8; ++i) {
+    const bool in = !view.perspective || d[i] >= view.near;
+    if (in) points[n] = c[i], depth[n++] = d[i];
+    for (int axis = 0; axis < 3 && beyond < 8; ++axis) {
+      const int j = i | (1 << axis);
+      if (j == i || in == (d[j] >= view.near)) continue;
+      const double t = (view.near - d[i]) / (d[j] - d[i]);
+      points[n] = c[i] + (c[j] - c[i]) * t, depth[n++] = view.near;
+    }
+  }
+  out = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
+  for (int i = 0; i < n; ++i) {
+    const glm::dvec3 rel = points[i] - view.origin;
+    const double w = view.perspective ? depth[i] : 1.0;
+    const double u = glm::dot(rel, view.right) / w, vv = glm::dot(rel, view.up) / w;
+    out.u0 = std::min(out.u0, u), out.u1 = std::max(out.u1, u);
+    out.v0 = std::min(out.v0, vv), out.v1 = std::max(out.v1, vv);
+    out.z0 = std::min(out.z0, depth[i]), out.z1 = std::max(out.z1, depth[i]);
+  }
+  if (caster)  // a cube's face holds a caster's volume only where it holds the caster whole
+    return !cube() ||
+           (out.u0 >= view.u0 && out.u1 <= view.u1 && out.v0 >= view.v0 && out.v1 <= view.v1);
+  out.u0 = std::max(out.u0, view.u0), out.u1 = std::min(out.u1, view.u1);
+  out.v0 = std::max(out.v0, view.v0), out.v1 = std::min(out.v1, view.v1);
+  return out.u0 <= out.u1 && out.v0 <= out.v1;
+}
+
+glm::dvec4 LightViews::depth_plane(std::size_t v) const {
+  const View& view = views_[v];
+  return {view.axis, -glm::dot(view.axis, view.origin)};
+}
+
+glm::dvec3 LightViews::point(std::size_t v, double u, double w, double d) const {
+  const View& view = views_[v];
+  const double scale = view.perspective ? d : 1.0;
+  return view.origin + view.axis * d + (view.right * u + view.up * w) * scale;
+}
+
+std::size_t LightViews::view_of(const glm::dvec3& p) const {
+  if (!cube()) return 0;
+  const glm::dvec3 rel = p - views_[0].origin;
+  const glm::dvec3 mag = glm::abs(rel);
+  const int axis = mag.x >= mag.y && mag.x >= mag.z ? 0 : mag.y >= mag.z ? 1 : 2;
+  return static_cast<std::size_t>(2 * axis + (rel[axis] < 0.0));
 }
 
 BoxVisibility LightViews::test(const Box& box, std::uint64_t& queries) const {

@@ -1,6 +1,7 @@
-// shadowvol accel: the light's views in which CC shadow volumes cull casters (Lloyd, Wendt,
-// Govindaraju and Manocha 2004, "CC Shadow Volumes", §3.1 and §3.4), made conservative so that
-// culling never loses a shadow (the paper accepts sampling artifacts, §5.1; we do not).
+// shadowvol accel: the light's views in which CC shadow volumes cull and clamp casters (Lloyd,
+// Wendt, Govindaraju and Manocha 2004, "CC Shadow Volumes", §3.1, §3.2 and §3.4), made
+// conservative so that neither ever loses a shadow (the paper accepts sampling artifacts, §3.2.3
+// and §5.1; we do not).
 //
 // A view is planar: a perspective frustum from a point light, fitted to the receivers' boxes
 // where one holds them all, else a cube of six (§3.4); or an orthographic window along a
@@ -20,6 +21,15 @@
 // depth less a tolerance of 1e-5 of the view's depth range (float positions, rounding of stored
 // depths up and of the box's depth down, and the eye's rasterization of the samples all err far
 // less). It is kept where some pixel has occluder >= that depth and receiver >= that depth.
+//
+// Layers (discrete clamping, §3.2.2): the receiver depths again per layer, a strip of the eye's
+// image; a sample goes into the layers given with it, a receiver triangle into a range of them.
+// A box tested in a layer is kept where some pixel of its rectangle has both depths (the
+// occluder's, and the layer's receiver) at or beyond its nearest: the same test, over the
+// receivers of one strip, so the argument below holds strip by strip.
+//
+// Light space (continuous clamping, §3.2.1): a box's rectangle on a view's image plane and its
+// interval of depth along the view's axis, from its corners in double (light_box).
 //
 // Why that is exact. A caster C culled: at every pixel p of its rectangle either no receiver lies
 // behind C's nearest depth there (so no visible point is in its shadow through p), or every ray
@@ -49,6 +59,12 @@ struct Box {
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
 };
 
+// Layers [first, last] of the receiver depths (LightViews, discrete clamping); none where
+// last < first.
+struct LayerRange {
+  std::uint16_t first = 1, last = 0;
+};
+
 // What a box's test in the light's views found.
 enum class BoxVisibility : std::uint8_t {
   kept,       // some pixel may show it to the light with a receiver behind it (or untestable)
@@ -62,7 +78,8 @@ class LightViews {
   // boxes, `size` x `size` pixels each, and clears their depths (`depths`: else they have none,
   // and only a box's place in the views is tested). Nothing to fit (no receivers): every caster
   // is unseen.
-  void fit(const glm::dvec4& light, const std::vector<Box>& receivers, int size, bool depths);
+  void fit(const glm::dvec4& light, const std::vector<Box>& receivers, int size, bool depths,
+           int layers = 0);
   // One view (orthographic or fitted frustum), or six (a cube), or none without receivers.
   std::size_t view_count() const { return views_count_; }
   bool cube() const { return views_count_ == 6; }
@@ -81,11 +98,15 @@ class LightViews {
     Box box;
   };
   void add_occluders(std::span<const Occluder> occluders);
-  // Draws a visible sample or a receiver triangle into the receiver depths. Eye-relative.
-  void add_receiver_point(const glm::dvec3& p);
+  // Draws a visible sample or a receiver triangle into the receiver depths, and into layers
+  // [layers.first, layers.last] of them (none: last < first). Eye-relative.
+  void add_receiver_point(const glm::dvec3& p, LayerRange layers = {});
   // Many points at once, in parallel (oneTBB); those with a NaN or infinite x are skipped.
-  void add_receiver_points(std::span<const glm::dvec3> points);
-  void add_receiver_triangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+  // `layers`: one range per point, or empty for none.
+  void add_receiver_points(std::span<const glm::dvec3> points,
+                           std::span<const LayerRange> layers = {});
+  void add_receiver_triangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                             LayerRange layers = {});
   // Whether the box may lie in any view: an occluder outside every view hides nothing tested.
   bool touches(const Box& box) const;
 
@@ -94,6 +115,26 @@ class LightViews {
   void finish(bool occluders, bool receivers);
   // Tests a caster's box; counts one query per view it is tested in into `queries`.
   BoxVisibility test(const Box& box, std::uint64_t& queries) const;
+  // Whether the box may shadow a receiver of `layer` (BoxVisibility::kept there).
+  bool kept_in_layer(const Box& box, int layer, std::uint64_t& queries) const;
+  int layers() const { return layers_; }
+
+  // Light space. A box's rectangle on view v's image plane (u, v: the plane's own coordinates)
+  // and its interval of depth along the view's axis. `caster`: the box must lie wholly in the
+  // view (beyond its near plane, and for a cube's face within its window: its volume stays in
+  // that frustum), else false. Otherwise (a receiver) its part beyond the near plane, the
+  // rectangle cut to the window, where every caster's volume that a view holds meets it.
+  struct LightBox {
+    double u0, u1, v0, v1;  // image plane
+    double z0, z1;          // depth
+  };
+  bool light_box(std::size_t view, const Box& box, bool caster, LightBox& out) const;
+  // Depth in view v as an affine function of position: depth(x) = dot(plane, (x, 1)).
+  glm::dvec4 depth_plane(std::size_t view) const;
+  // The point at (u, v) of view's image plane and depth d.
+  glm::dvec3 point(std::size_t view, double u, double v, double d) const;
+  // The view that holds the direction from the light to p: a cube's face, else 0.
+  std::size_t view_of(const glm::dvec3& p) const;
 
  private:
   struct View {
@@ -107,6 +148,9 @@ class LightViews {
     // (drawn into seen[0]); `kept`: the lesser of occluder and receiver, so that a box is kept
     // where some texel reaches its depth in both.
     std::vector<std::vector<float>> seen, kept;
+    // Per layer: its receivers' depths, and the pyramid of the lesser of them and the occluder.
+    std::vector<std::vector<float>> layer_receiver;
+    std::vector<std::vector<std::vector<float>>> layer_kept;
   };
   struct Rect {
     int x0, y0, x1, y1;  // inclusive pixel range
@@ -118,8 +162,9 @@ class LightViews {
   bool project(const View& view, const glm::dvec3& p, glm::dvec3& out) const;
   // Whether a cube's box lies about the light: in the near cube, in no face's frustum whole.
   bool about_light(const Box& box) const;
-  // Into the receiver depths of one view, at every pixel within the slack of the point.
-  void splat_receiver(View& view, const glm::dvec3& p);
+  // Into the receiver depths of one view (and of the layers), at every pixel within the slack
+  // of the point.
+  void splat_receiver(View& view, const glm::dvec3& p, LayerRange layers);
   // The box's pixels and nearest depth in a view: false where it lies outside it; `untestable`
   // where part of it lies in front of the near plane (it might cast there unseen by the view).
   bool box_rect(const View& view, const Box& box, Rect& rect, bool& untestable) const;
@@ -140,6 +185,7 @@ class LightViews {
   }
 
   int size_ = 0;
+  int layers_ = 0;
   std::vector<View> views_;  // [0, views_count_) are this fit's
   std::size_t views_count_ = 0;
   bool occluders_ = false, kept_ = false;  // what finish() built

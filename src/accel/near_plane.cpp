@@ -90,9 +90,9 @@ void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4&
     // Only the part on the light's side of the near plane, and not beyond a point light, can
     // meet a segment from the light to the near plane.
     clip_polygon(poly, n, [&](const glm::dvec4& v) { return s * glm::dot(near, v); });
-    if (point && n >= 3)
+    if (point && n >= 3)  // homogeneous: a clamped volume's caps have w other than 1
       clip_polygon(poly, n,
-                   [&](const glm::dvec4& v) { return s * (light_side - glm::dot(near, v)); });
+                   [&](const glm::dvec4& v) { return s * (light_side * v.w - glm::dot(near, v)); });
     if (n < 3) continue;
     // Where the line from the light through v meets the near plane: (N.v) l - (N.l) v, a linear
     // map of v. Its w has the sign of -s; negated by s, every vertex lands in front of the eye.

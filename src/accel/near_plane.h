@@ -40,15 +40,16 @@ bool may_shadow_near_plane(const glm::vec3& centre, float radius,
 // where the projection degenerates; such a volume is drawn by z-fail.
 bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_proj);
 
-// Appends the pre-fill of one volume: its light caps (object space, with `model` to eye-relative
-// space and `mirror` = -1 where that transform mirrors), seen from `light` (eye-relative) on the
-// near plane of `view_proj` (core/projection.h). The triangles are in clip space with their
-// depth set to 1/2 (they carry counts, not depth); the weights are signed so that a front face
-// adds what the volume gains along the segment from the light; `parts`, where not null, gets the
-// part of each triangle's cap (light_caps.parts must be filled), since each part of a volume
-// counted by its own split plane needs its own pre-fill. Each cap is first cut to the piece that
-// can cross such a segment: on the light's side of the near plane and, for a point light, no
-// farther from it than the light. Needs near_plane_prefill_possible(light, view_proj).
+// Appends the pre-fill of one volume: its light caps (object space, homogeneous with w > 0, so
+// that a clamped volume's dark caps, which lie among the receivers, may be given too; `model`
+// takes them to eye-relative space, `mirror` = -1 where it mirrors), seen from `light`
+// (eye-relative) on the near plane of `view_proj` (core/projection.h). The triangles are in clip
+// space with their depth set to 1/2 (they carry counts, not depth); the weights are signed so that
+// a front face adds what the volume gains along the segment from the light; `parts`, where not
+// null, gets the part of each triangle's cap (light_caps.parts must be filled), since each part of
+// a volume counted by its own split plane needs its own pre-fill. Each cap is first cut to the
+// piece that can cross such a segment: on the light's side of the near plane and, for a point
+// light, no farther from it than the light. Needs near_plane_prefill_possible(light, view_proj).
 void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
                                const glm::vec4& light, const glm::mat4& view_proj,
                                std::vector<glm::vec4>& triangles,

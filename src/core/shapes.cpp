@@ -183,6 +183,28 @@ Mesh make_knight() {
   return m;
 }
 
+Mesh make_truss(float half_span, float height, float depth, int panels, float radius, int sides) {
+  Mesh m;
+  auto member = [&](glm::vec3 a, glm::vec3 b) {
+    append_mesh(m, make_tube(a, b, radius, radius, sides));
+  };
+  const float step = 2.0f * half_span / static_cast<float>(panels);
+  auto bottom = [&](int i) { return glm::vec3(-half_span + step * float(i), 0.0f, 0.0f); };
+  auto top = [&](int i, float side) {  // over the middle of panel i
+    return glm::vec3(-half_span + step * (float(i) + 0.5f), height, side * 0.5f * depth);
+  };
+  for (int i = 0; i < panels; ++i) member(bottom(i), bottom(i + 1));  // chords panel by panel
+  for (const float side : {-1.0f, 1.0f}) {
+    for (int i = 0; i + 1 < panels; ++i) member(top(i, side), top(i + 1, side));
+    for (int i = 0; i < panels; ++i) {
+      member(bottom(i), top(i, side));
+      member(top(i, side), bottom(i + 1));
+    }
+  }
+  for (int i = 0; i < panels; ++i) member(top(i, -1.0f), top(i, 1.0f));
+  return m;
+}
+
 Mesh make_robot() {
   Mesh m;
   for (const float side : {-1.0f, 1.0f}) {

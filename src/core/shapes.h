@@ -58,6 +58,15 @@ Mesh make_knight();
 // Fig. 6) is made of it.
 Mesh make_robot();
 
+// A roof truss across x in [-half_span, half_span], its bottom chord along the x axis: a Warren
+// truss of triangular section, two top chords `depth` apart (z = +-depth / 2) at y = `height`
+// over one bottom chord (each chord a tube per panel), diagonals zig-zagging on both slanted
+// faces between its `panels` panel points, and ties across the top at every top panel point;
+// every member a closed tube of
+// radius `radius` and `sides` sides (4 sides triangles each). The members cross at the nodes (a
+// closed mesh, self-intersecting), as CC shadow volumes' corridor trusses (Fig. 1) do.
+Mesh make_truss(float half_span, float height, float depth, int panels, float radius, int sides);
+
 // A tree about 4 units tall, its root at the origin: a trunk and three levels of branches, each
 // a closed tapered tube, and open leaves (single quads) fanned out at the tips of the last
 // level, sharing the tip's centre vertex so that a branch and its leaves form one connected

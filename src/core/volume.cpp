@@ -189,6 +189,40 @@ inline glm::vec4 segment_end(const glm::vec3& p, const glm::vec4& light, const V
   return t == -INFINITY ? glm::vec4(p, 1.0f) : extrude(p, light, clamp.plane_at(t, far_plane));
 }
 
+// The bounds of the intervals of vertex v's leaves strictly inside (begin, end), sorted, once
+// each: where every piece along v's ray is cut.
+void ray_cuts(const VolumeClamp& clamp, std::uint32_t v, float begin, float end,
+              std::vector<float>& cuts) {
+  cuts.clear();
+  for (const std::uint32_t leaf : clamp.leaves_around(v))
+    for (const DepthInterval& i : clamp.of_leaf(leaf))
+      for (const float bound : {i.begin, i.end})
+        if (bound > begin && bound < end) cuts.push_back(bound);
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+}
+
+// A piece [begin, end] of edge u -> v as a ladder: quads (u_i, u_i+1, v_j+1, v_j) stepping along
+// both rays at once where their cuts coincide, else along one, the other corner doubled (a
+// triangle). emit(u_near, u_far, v_far, v_near), each corner by its depth (-inf: the vertex).
+template <class Emit>
+void ladder(float begin, float end, const std::vector<float>& u_cuts,
+            const std::vector<float>& v_cuts, Emit&& emit) {
+  std::size_t i = 0, j = 0;
+  float u_at = begin, v_at = begin;
+  while (i < u_cuts.size() || j < v_cuts.size()) {
+    const float u_next = i < u_cuts.size() ? u_cuts[i] : end;
+    const float v_next = j < v_cuts.size() ? v_cuts[j] : end;
+    const float step = std::min(u_next, v_next);
+    const float u_to = u_next == step ? u_next : u_at, v_to = v_next == step ? v_next : v_at;
+    emit(u_at, u_to, v_to, v_at);
+    i += u_next == step;
+    j += v_next == step;
+    u_at = u_to, v_at = v_to;
+  }
+  emit(u_at, end, end, v_at);
+}
+
 }  // namespace
 
 Expected<void> check_light(const glm::vec4& light) {
@@ -323,11 +357,19 @@ std::size_t find_casting_edges(const Topology& topo, Generator generator,
   const std::int8_t* w = weights.data();
   if (clamp != nullptr) {  // every edge with a term may cast pieces: not the vectorised loop
     std::size_t quads = 0;
+    std::vector<float> u_cuts, v_cuts;
+    const std::size_t regular = topo.regular_edge_count();
     for (std::size_t e = edges.begin; e < edges.end; ++e) {
-      std::size_t pieces = 0;
-      edge_pieces(topo, *clamp, robust, w, e, [&](float, float, int) { ++pieces; });
-      if (pieces > 0) casting.push_back(static_cast<std::uint32_t>(e));
-      quads += pieces;
+      const IndexPair& uv =
+          e < regular ? topo.edge_vertices[e] : topo.irregular_vertices[e - regular];
+      std::size_t steps = 0;
+      edge_pieces(topo, *clamp, robust, w, e, [&](float begin, float end, int) {
+        ray_cuts(*clamp, uv[0], begin, end, u_cuts);
+        ray_cuts(*clamp, uv[1], begin, end, v_cuts);
+        ladder(begin, end, u_cuts, v_cuts, [&](float, float, float, float) { ++steps; });
+      });
+      if (steps > 0) casting.push_back(static_cast<std::uint32_t>(e));
+      quads += steps;
     }
     return quads;
   }
@@ -384,18 +426,23 @@ void write_sides(const Topology& topo, const glm::vec4& light, const glm::vec4& 
   const IndexPair* faces = topo.edge_faces.data();
   const IndexPair* vertices = topo.edge_vertices.data();
   const std::size_t regular = topo.regular_edge_count();
-  if (clamp != nullptr) {  // each piece: the edge between the planes that bound it
+  if (clamp != nullptr) {  // each piece: the edge between the planes that bound it, a ladder
+    std::vector<float> u_cuts, v_cuts;
     for (const std::uint32_t e : casting) {
       const IndexPair& uv = e < regular ? vertices[e] : topo.irregular_vertices[e - regular];
       const glm::vec3& u = positions[uv[0]];
       const glm::vec3& v = positions[uv[1]];
       const std::uint32_t part = out.parts != nullptr ? topo.vertex_part[uv[0]] : 0;
       edge_pieces(topo, *clamp, robust, w, e, [&](float begin, float end, int weight) {
-        out.vertices[0] = segment_end(u, light, *clamp, begin, far_plane);
-        out.vertices[1] = extrude(u, light, clamp->plane_at(end, far_plane));
-        out.vertices[2] = extrude(v, light, clamp->plane_at(end, far_plane));
-        out.vertices[3] = segment_end(v, light, *clamp, begin, far_plane);
-        finish_primitive(kQuadCorners, weight, part, out);
+        ray_cuts(*clamp, uv[0], begin, end, u_cuts);
+        ray_cuts(*clamp, uv[1], begin, end, v_cuts);
+        ladder(begin, end, u_cuts, v_cuts, [&](float u0, float u1, float v1, float v0) {
+          out.vertices[0] = segment_end(u, light, *clamp, u0, far_plane);
+          out.vertices[1] = segment_end(u, light, *clamp, u1, far_plane);
+          out.vertices[2] = segment_end(v, light, *clamp, v1, far_plane);
+          out.vertices[3] = segment_end(v, light, *clamp, v0, far_plane);
+          finish_primitive(kQuadCorners, weight, part, out);
+        });
       });
     }
     return;
@@ -506,6 +553,26 @@ void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& f
       write_triangle(extrude(a, light, far_plane), extrude(b, light, far_plane),
                      extrude(d, light, far_plane), c.dark, part, dark_caps);
   }
+}
+
+void build_vertex_leaves(const Topology& topo, std::span<const std::uint32_t> face_leaf,
+                         std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& leaves) {
+  const std::size_t vertices = topo.positions.size();
+  std::uint32_t leaf_count = 0;
+  for (const std::uint32_t leaf : face_leaf) leaf_count = std::max(leaf_count, leaf + 1);
+  std::vector<std::uint64_t> keys;
+  keys.reserve(topo.face_vertices.size());
+  for (std::size_t i = 0; i < topo.face_vertices.size(); ++i)
+    keys.push_back(std::uint64_t{topo.face_vertices[i]} * leaf_count + face_leaf[i / 3]);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  offsets.assign(vertices + 1, 0);
+  leaves.clear();
+  for (const std::uint64_t key : keys) {
+    ++offsets[key / leaf_count + 1];
+    leaves.push_back(static_cast<std::uint32_t>(key % leaf_count));
+  }
+  for (std::size_t v = 0; v < vertices; ++v) offsets[v + 1] += offsets[v];
 }
 
 void build_volume(const Topology& topo, const glm::vec4& light, const VolumeOptions& options,

@@ -194,6 +194,12 @@ struct VolumeBuffer {
 // casts, nothing for an edge that is no silhouette. The robust generator keeps weights +-1: each
 // face's term over its own leaf's intervals. A leaf without intervals casts nothing (culled).
 //
+// Watertight: the ray of a vertex may bound pieces that end at different planes on its two sides
+// (one leaf's interval ends where the other's goes on). A rasterizer leaves cracks at such a
+// T-junction, so every piece is cut along each of its vertices' rays at every bound of the
+// intervals of the leaves around that vertex (vertex_leaves), the pieces of its neighbours
+// likewise: a piece is then a ladder of quads, some with two corners at one point (triangles).
+//
 // The law (volume_law_test.cpp): the count at P is the number of caster surfaces between P and
 // the light whose leaf holds depth(P) in one of its intervals.
 struct DepthInterval {
@@ -203,9 +209,12 @@ struct DepthInterval {
 
 struct VolumeClamp {
   glm::vec4 depth{0.0f};
-  // Per face, its leaf; empty: every face in leaf 0. Points into storage the caller keeps alive
-  // while the clamp is used (the sub-objects of the mesh).
+  // Per face, its leaf; empty: every face in leaf 0. And per vertex, the leaves of the faces
+  // around it: vertex v's are vertex_leaves[vertex_leaf_offsets[v] .. [v + 1]) (empty with
+  // face_leaf). Point into storage the caller keeps alive while the clamp is used (the
+  // sub-objects of the mesh).
   std::span<const std::uint32_t> face_leaf;
+  std::span<const std::uint32_t> vertex_leaf_offsets, vertex_leaves;
   // Leaf k's intervals are intervals[offsets[k] .. offsets[k + 1]), sorted, disjoint.
   std::vector<std::uint32_t> offsets;
   std::vector<DepthInterval> intervals;
@@ -215,6 +224,13 @@ struct VolumeClamp {
     return std::span(intervals).subspan(offsets[leaf], offsets[leaf + 1] - offsets[leaf]);
   }
   std::uint32_t leaf_of(std::size_t face) const { return face_leaf.empty() ? 0 : face_leaf[face]; }
+  // The leaves of the faces around vertex v.
+  std::span<const std::uint32_t> leaves_around(std::size_t v) const {
+    static constexpr std::uint32_t kOnlyLeaf[1] = {0};
+    if (vertex_leaf_offsets.empty()) return kOnlyLeaf;
+    return vertex_leaves.subspan(vertex_leaf_offsets[v],
+                                 vertex_leaf_offsets[v + 1] - vertex_leaf_offsets[v]);
+  }
   // The plane depth = t as a far plane (kept side depth <= t); +inf: `far_plane`.
   glm::vec4 plane_at(float t, const glm::vec4& far_plane) const {
     return t == INFINITY ? far_plane : glm::vec4(glm::vec3(depth), depth.w - t);
@@ -284,6 +300,11 @@ void write_caps(const Topology& topo, const glm::vec4& light, const glm::vec4& f
                 Generator generator, std::span<const std::int8_t> weights, IndexRange faces,
                 PrimitiveSpan light_caps, PrimitiveSpan dark_caps,
                 const VolumeClamp* clamp = nullptr);
+
+// The leaves around each vertex (VolumeClamp::vertex_leaves), from each face's: vertex v's are
+// leaves[offsets[v] .. offsets[v + 1]), sorted, each once.
+void build_vertex_leaves(const Topology& topo, std::span<const std::uint32_t> face_leaf,
+                         std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& leaves);
 
 struct VolumeOptions {
   Generator generator = Generator::automatic;

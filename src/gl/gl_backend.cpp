@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -16,6 +17,7 @@
 #include "core/names.h"
 #include "gl/shaders.h"
 #include "render/shading.h"
+#include "render/volume_costs.h"
 
 namespace shadowvol::gl {
 namespace {
@@ -250,6 +252,12 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
   r->settings_ = settings;
   r->info_ = query_info();
   using namespace glsl;
+  // The count passes' fragment shaders, without and with the strips' fragment test.
+  const std::string version = "#version 450 core\n";
+  const std::string count[2] = {version + kCountFragment,
+                                version + "#define STRIPS\n" + kCountFragment};
+  const std::string light_map[2] = {version + kLightMapFragment,
+                                    version + "#define STRIPS\n" + kLightMapFragment};
   struct Build {
     Object* out;
     const char* name;
@@ -272,22 +280,38 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
        {{GL_VERTEX_SHADER, kSurfaceVertex},
         {GL_GEOMETRY_SHADER, kSurfaceGeometry},
         {GL_FRAGMENT_SHADER, kLitFragment}}},
-      {&r->volume_cpu_,
+      {&r->volume_cpu_[0],
        "cpu volumes",
-       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, kCountFragment}}},
-      {&r->volume_gpu_,
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, count[0].c_str()}}},
+      {&r->volume_gpu_[0],
        "gpu volumes",
        {{GL_VERTEX_SHADER, kPassVertex},
         {GL_GEOMETRY_SHADER, kVolumeGeometry},
-        {GL_FRAGMENT_SHADER, kCountFragment}}},
-      {&r->light_map_cpu_,
+        {GL_FRAGMENT_SHADER, count[0].c_str()}}},
+      {&r->light_map_cpu_[0],
        "cpu volumes into the light map",
-       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, kLightMapFragment}}},
-      {&r->light_map_gpu_,
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, light_map[0].c_str()}}},
+      {&r->light_map_gpu_[0],
        "gpu volumes into the light map",
        {{GL_VERTEX_SHADER, kPassVertex},
         {GL_GEOMETRY_SHADER, kVolumeGeometry},
-        {GL_FRAGMENT_SHADER, kLightMapFragment}}},
+        {GL_FRAGMENT_SHADER, light_map[0].c_str()}}},
+      {&r->volume_cpu_[1],
+       "cpu volumes in strips",
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, count[1].c_str()}}},
+      {&r->volume_gpu_[1],
+       "gpu volumes in strips",
+       {{GL_VERTEX_SHADER, kPassVertex},
+        {GL_GEOMETRY_SHADER, kVolumeGeometry},
+        {GL_FRAGMENT_SHADER, count[1].c_str()}}},
+      {&r->light_map_cpu_[1],
+       "cpu volumes into the light map in strips",
+       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, light_map[1].c_str()}}},
+      {&r->light_map_gpu_[1],
+       "gpu volumes into the light map in strips",
+       {{GL_VERTEX_SHADER, kPassVertex},
+        {GL_GEOMETRY_SHADER, kVolumeGeometry},
+        {GL_FRAGMENT_SHADER, light_map[1].c_str()}}},
       {&r->cover_,
        "transparent surfaces in front",
        {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kCoverFragment}}},
@@ -362,6 +386,11 @@ Expected<void> check_frame(const GlSettings& settings, const RenderOptions& opti
                       "built in the software rasterizer)");
   if (options.tile_work)
     return make_error("the tile work of a heatmap is counted by the software rasterizer only");
+  if (settings.volumes == VolumePath::gpu && clamps_continuous(options.clamp))
+    return make_error(
+        "continuous clamping builds each volume's segments on the CPU (CC shadow volumes sec. "
+        "5.1: volumes built on the GPU do not adapt to it); use --volumes cpu, or --clamp "
+        "discrete, which the geometry shader's volumes take");
   return check_settings(settings, options.generator);
 }
 
@@ -515,7 +544,8 @@ void GlBackend::volumes_ready(std::size_t l, const std::vector<std::uint8_t>& re
     if (fresh) uploads[o] = std::make_unique<VolumeUpload>();
     const bool zfail = v.rule == VolumeRule::zfail;
     if (fresh || rebuilt[o])
-      uploads[o]->upload(in_->volumes.volume(l, o), zfail || v.light_caps_everywhere, zfail);
+      uploads[o]->upload(in_->volumes.volume(l, o), zfail || v.light_caps_everywhere,
+                         zfail || v.dark_caps_everywhere());
     if (!plan.transparent(o)) unit_weights_ = unit_weights_ && uploads[o]->unit_weights;
   }
 }
@@ -560,41 +590,164 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
   const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
   glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
   const int mirror = plan.objects[o].weight_sign;
+  // The draws of the volume: into the target, or (all) every primitive once, for its fill.
+  std::function<void()> draw, draw_all;
   if (cpu_) {
-    const VolumeUpload& up = *uploads_[l][o];
-    glBindVertexArray(up.vao.get());
-    if (additive) {
-      count_state(true, rule, mirror);
-      glDrawArrays(GL_TRIANGLES, 0, up.vertices);
-    } else {
-      for (const VolumeUpload::Group& g : up.groups) {
+    const VolumeUpload* up = uploads_[l][o].get();
+    glBindVertexArray(up->vao.get());
+    draw = [up, additive, rule, mirror] {
+      if (additive) {
+        count_state(true, rule, mirror);
+        glDrawArrays(GL_TRIANGLES, 0, up->vertices);
+        return;
+      }
+      for (const VolumeUpload::Group& g : up->groups) {
         count_state(false, rule, g.weight > 0 ? mirror : -mirror);
         for (int k = 0; k < std::abs(g.weight); ++k) glDrawArrays(GL_TRIANGLES, g.first, g.count);
       }
-    }
-    return;
-  }
-  const bool robust = v.build.generator != Generator::standard;
-  MeshBuffers& m = *frame_meshes_[o];
-  if (!m.adjacency_vao) m.build_adjacency();
-  glBindVertexArray(m.adjacency_vao.get());
-  glUniform4fv(glsl::kLight, 1, glm::value_ptr(v.object_light));
-  glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(v.build.far_plane));
-  glUniform1i(glsl::kRobust, robust);
-  glUniform1i(glsl::kCaps, rule == Rule::zfail       ? glsl::kCapsAll
-                           : v.light_caps_everywhere ? glsl::kCapsLight
-                                                     : glsl::kCapsNone);
-  auto draw_emit = [&](int emit, int sign) {
-    glUniform1i(glsl::kEmit, emit);
-    count_state(additive, rule, sign);
-    glDrawElements(GL_TRIANGLES_ADJACENCY, m.adjacency_index_count, GL_UNSIGNED_INT, nullptr);
-  };
-  if (additive) {
-    draw_emit(glsl::kEmitWeighted, mirror);
+    };
+    draw_all = [up] { glDrawArrays(GL_TRIANGLES, 0, up->vertices); };
   } else {
-    draw_emit(glsl::kEmitPositive, mirror);
-    if (robust && rule == Rule::zfail) draw_emit(glsl::kEmitNegative, -mirror);
+    const bool robust = v.build.generator != Generator::standard;
+    MeshBuffers* m = frame_meshes_[o];
+    if (!m->adjacency_vao) m->build_adjacency();
+    glBindVertexArray(m->adjacency_vao.get());
+    glUniform4fv(glsl::kLight, 1, glm::value_ptr(v.object_light));
+    glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(v.build.far_plane));
+    glUniform1i(glsl::kRobust, robust);
+    glUniform1i(glsl::kCaps, rule == Rule::zfail       ? glsl::kCapsAll
+                             : v.light_caps_everywhere ? glsl::kCapsLight
+                                                       : glsl::kCapsNone);
+    auto emit = [m](int mode) {
+      glUniform1i(glsl::kEmit, mode);
+      glDrawElements(GL_TRIANGLES_ADJACENCY, m->adjacency_index_count, GL_UNSIGNED_INT, nullptr);
+    };
+    draw = [additive, robust, emit, rule, mirror] {
+      if (additive) {
+        count_state(true, rule, mirror);
+        emit(glsl::kEmitWeighted);
+        return;
+      }
+      count_state(false, rule, mirror);
+      emit(glsl::kEmitPositive);
+      if (robust && rule == Rule::zfail) {
+        count_state(false, rule, -mirror);
+        emit(glsl::kEmitNegative);
+      }
+    };
+    draw_all = [emit] { emit(glsl::kEmitWeighted); };
   }
+  // Once per strip of discrete clamping (the fragment test's bounds), or once.
+  const std::size_t runs = std::max<std::size_t>(v.strips.size(), 1);
+  for (std::size_t r = 0; r < runs; ++r) {
+    if (clamps_discrete(in_->options.clamp)) {
+      const raster::ScreenStrip strip = v.strips.empty() ? raster::ScreenStrip{} : v.strips[r];
+      constexpr float kUnbounded = 1e30f;
+      glUniform2fv(glsl::kStripAcross, 1, glm::value_ptr(strip.across));
+      glUniform2f(glsl::kStripBounds, std::max(strip.lo, -kUnbounded),
+                  std::min(strip.hi, kUnbounded));
+    }
+    draw();
+    if (in_->options.count_fill) measure_fill(rule == Rule::zpass, draw_all);
+  }
+}
+
+void GlBackend::set_viewport_uniform(bool strips) {
+  if (strips)
+    glUniform2f(glsl::kViewport, static_cast<float>(in_->options.width),
+                static_cast<float>(in_->options.height));
+}
+
+// The pixels a volume's draw touches with the depth test off (CC shadow volumes §4's fill), and
+// those that pass the rule's depth test (its stencil writes): occlusion queries over the same
+// draw with every write off.
+void GlBackend::measure_fill(bool zpass, const std::function<void()>& draw_all) {
+  GLboolean colour[4];
+  glGetBooleanv(GL_COLOR_WRITEMASK, colour);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glStencilMask(0);
+  auto samples = [&](GLenum depth_func) {
+    glDepthFunc(depth_func);
+    glBeginQuery(GL_SAMPLES_PASSED, fill_query_.get());
+    draw_all();
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 n = 0;
+    glGetQueryObjectui64v(fill_query_.get(), GL_QUERY_RESULT, &n);
+    return static_cast<std::uint64_t>(n);
+  };
+  const std::uint64_t touched = samples(GL_ALWAYS), nearer = samples(GL_GREATER);
+  FrameStats& stats = in_->frame.stats;
+  stats.fill += touched;
+  stats.stencil_writes += zpass ? nearer : touched - nearer;
+  glColorMask(colour[0], colour[1], colour[2], colour[3]);
+  glStencilMask(0xFF);
+}
+
+VolumeCosts GlBackend::measure_volume_costs() {
+  const TypicalVolumes& volumes = typical_volumes();
+  std::vector<VolumeVertex> vertices;
+  vertices.reserve(volumes.vertices());
+  for (std::size_t i = 0; i < volumes.vertices(); ++i)
+    vertices.push_back({volumes.triangles[i], volumes.weights[i / 3]});
+  const Object buffer = make_buffer(), vao = make_vertex_array();
+  glNamedBufferStorage(buffer.get(),
+                       static_cast<GLsizeiptr>(vertices.size() * sizeof(VolumeVertex)),
+                       vertices.data(), 0);
+  glVertexArrayVertexBuffer(vao.get(), 0, buffer.get(), 0, sizeof(VolumeVertex));
+  glVertexArrayAttribFormat(vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribIFormat(vao.get(), 1, 1, GL_INT, offsetof(VolumeVertex, weight));
+  for (GLuint a : {0u, 1u}) {
+    glVertexArrayAttribBinding(vao.get(), a, 0);
+    glEnableVertexArrayAttrib(vao.get(), a);
+  }
+  glUseProgram(volume_cpu_[0].get());
+  const glm::mat4 identity(1.0f);  // the triangles are in clip space already
+  glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(identity));
+  glBindVertexArray(vao.get());
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glDisable(GL_STENCIL_TEST);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  // Additive counts over an empty depth buffer: every fragment passes z-pass.
+  auto best_of_runs = [&](int side, std::uint64_t& fill) {
+    const Object counts = make_texture(GL_TEXTURE_2D), depth = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(counts.get(), 1, GL_R32F, side, side);
+    glTextureStorage2D(depth.get(), 1, GL_DEPTH32F_STENCIL8, side, side);
+    const Object fbo = make_framebuffer();
+    glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, counts.get(), 0);
+    glNamedFramebufferTexture(fbo.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth.get(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+    glViewport(0, 0, side, side);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfi(fbo.get(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    count_state(true, Rule::zpass, 1);
+    double best = INFINITY;
+    for (int run = 0; run < 5; ++run) {
+      glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, zero);
+      glFinish();
+      const auto start = std::chrono::steady_clock::now();
+      glBeginQuery(GL_SAMPLES_PASSED, fill_query_.get());
+      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
+      glEndQuery(GL_SAMPLES_PASSED);
+      glFinish();
+      best = std::min(
+          best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count());
+      GLuint64 n = 0;
+      glGetQueryObjectui64v(fill_query_.get(), GL_QUERY_RESULT, &n);
+      fill = n;
+    }
+    return best;
+  };
+  std::uint64_t small_fill = 0, large_fill = 0;
+  const double small = best_of_runs(kSmallSide, small_fill);
+  const double large = best_of_runs(kLargeSide, large_fill);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDisable(GL_BLEND);
+  return volume_costs(small, large, volumes.vertices(), large_fill);
 }
 
 void GlBackend::begin_mask(std::size_t) {
@@ -617,7 +770,9 @@ void GlBackend::begin_mask(std::size_t) {
     glStencilFunc(GL_ALWAYS, 0, 0xFF);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   }
-  glUseProgram(cpu_ ? volume_cpu_.get() : volume_gpu_.get());
+  const int strips = clamps_discrete(in_->options.clamp);
+  glUseProgram(cpu_ ? volume_cpu_[strips].get() : volume_gpu_[strips].get());
+  set_viewport_uniform(strips);
 }
 
 // Kim et al. Eq. 3: each count adds its caster's log transmittance, in float32 with additive
@@ -630,7 +785,9 @@ void GlBackend::begin_light_map(std::size_t) {
   glClearNamedFramebufferfv(t.light.get(), GL_COLOR, 0, zero);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
-  glUseProgram(cpu_ ? light_map_cpu_.get() : light_map_gpu_.get());
+  const int strips = clamps_discrete(in_->options.clamp);
+  glUseProgram(cpu_ ? light_map_cpu_[strips].get() : light_map_gpu_[strips].get());
+  set_viewport_uniform(strips);
 }
 
 void GlBackend::count_volume(std::size_t l, std::size_t o) {

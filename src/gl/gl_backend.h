@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -76,6 +77,7 @@ class GlBackend final : public FrameBackend {
   bool counts_cpu_volumes() const override { return settings_.volumes == VolumePath::cpu; }
   bool can_present() const override { return true; }
   void finish() override;
+  VolumeCosts measure_volume_costs() override;
 
   void begin_frame(const FrameInputs& inputs) override;
   void depth_pass(Layer layer) override;
@@ -111,6 +113,11 @@ class GlBackend final : public FrameBackend {
   // Draws the volume of object o for the light into the bound target, additively or into the
   // stencil.
   void draw_volume(std::size_t light, std::size_t o, bool additive);
+  // Adds the fill and the stencil writes of one draw of a volume (draw_all: every primitive
+  // once) into the frame's stats (RenderOptions::count_fill).
+  void measure_fill(bool zpass, const std::function<void()>& draw_all);
+  // With the strips' programs, their viewport uniform.
+  void set_viewport_uniform(bool strips);
   MeshBuffers& mesh_buffers(const SceneObject& object);
 
   std::optional<Context> context_;  // first member: destroyed last
@@ -119,9 +126,11 @@ class GlBackend final : public FrameBackend {
   // [0]: the scene through a vertex shader alone; [1]: through a pass-through geometry shader,
   // to match the depths of geometry-shader volumes (shaders.h).
   Object surface_depth_[2], surface_lit_[2];
-  Object volume_cpu_, volume_gpu_, light_map_cpu_, light_map_gpu_, cover_, see_through_,
-      background_, resolve_;
+  // The count passes' programs: [0] over the whole image, [1] with the strips' fragment test.
+  Object volume_cpu_[2], volume_gpu_[2], light_map_cpu_[2], light_map_gpu_[2];
+  Object cover_, see_through_, background_, resolve_;
   Object empty_vao_;
+  Object fill_query_ = make_query(GL_SAMPLES_PASSED);
   std::unique_ptr<Targets> targets_;
   std::unordered_map<const Topology*, std::unique_ptr<MeshBuffers>> meshes_;
   std::vector<std::vector<std::unique_ptr<VolumeUpload>>> uploads_;  // [light][object]

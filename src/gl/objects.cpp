@@ -28,6 +28,12 @@ Object make_framebuffer() {
   return {n, [](GLuint name) { glDeleteFramebuffers(1, &name); }};
 }
 
+Object make_query(GLenum target) {
+  GLuint n = 0;
+  glCreateQueries(target, 1, &n);
+  return {n, [](GLuint name) { glDeleteQueries(1, &name); }};
+}
+
 namespace {
 
 std::string info_log(GLuint object, bool program) {

@@ -51,6 +51,7 @@ Object make_buffer();
 Object make_vertex_array();
 Object make_texture(GLenum target);
 Object make_framebuffer();
+Object make_query(GLenum target);
 
 struct ShaderSource {
   GLenum stage;  // GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER

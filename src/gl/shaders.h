@@ -5,6 +5,9 @@
 //     light cap and the surface it lies on get bit-identical depths (GPU Gems 3 §11.3.2: "transform
 //     the actual rendered scene geometry exactly like the geometry in the shadow volume shader").
 //   - Uniform locations are fixed in the source; gl_backend.cpp names them in one enum.
+//   - The count passes' fragment shaders, built with STRIPS defined, keep to a strip of the image
+//     (discrete clamping, accel/slices.h): a fragment test, so that no triangle is cut and a light
+//     cap keeps its surface's depths (raster::ScreenStrip).
 //   - The geometry shader decides a face's facing from its three vertices symmetrically (three
 //     normals, three light directions), so that a face gets the same answer as itself and as a
 //     neighbour (GPU Gems 3 listing 11-1), and a face of zero area gets 0 and casts nothing.
@@ -17,7 +20,8 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kRobust = 5, kCaps = 6, kEmit = 7, kAlbedo = 8, kRadiance = 9,
                      kCountTexture = 10, kFirstId = 11, kAmbient = 12, kSpecular = 13,
                      kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
-                     kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21;
+                     kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
+                     kStripAcross = 22, kStripBounds = 23, kViewport = 24;
 
 // Which caps the volume geometry shader emits (uniform kCaps).
 inline constexpr int kCapsNone = 0;   // z-pass of an opaque caster: sides only
@@ -29,12 +33,12 @@ inline constexpr int kEmitPositive = 0;  // every primitive of weight +1 (stenci
 inline constexpr int kEmitNegative = 1;  // back faces' light caps, weight -1, own vertex order
 inline constexpr int kEmitWeighted = 2;  // everything, each with its signed weight (additive)
 
-#define SHADOWVOL_GLSL_PRELUDE                     \
-  "#version 450 core\n"                            \
-  "layout(location = 0) uniform mat4 mvp;\n"      \
-  "vec4 to_clip(vec4 p) {\n"                       \
-  "  precise vec4 c = mvp * p;\n"                  \
-  "  return c;\n"                                  \
+#define SHADOWVOL_GLSL_PRELUDE               \
+  "#version 450 core\n"                      \
+  "layout(location = 0) uniform mat4 mvp;\n" \
+  "vec4 to_clip(vec4 p) {\n"                 \
+  "  precise vec4 c = mvp * p;\n"            \
+  "  return c;\n"                            \
   "}\n"
 
 // Scene geometry: the depth-and-id pass and the lit passes.
@@ -238,27 +242,49 @@ void main() {
 }
 )";
 
+// What the count passes' fragment shaders share: with STRIPS, the fragment test of a strip of the
+// image, s = strip_across . ndc within strip_bounds (raster::ScreenStrip).
+#define SHADOWVOL_GLSL_STRIP                                                 \
+  "#ifdef STRIPS\n"                                                          \
+  "layout(location = 22) uniform vec2 strip_across;\n"                       \
+  "layout(location = 23) uniform vec2 strip_bounds;\n"                       \
+  "layout(location = 24) uniform vec2 viewport;\n"                           \
+  "#endif\n"                                                                 \
+  "void keep_to_strip() {\n"                                                 \
+  "#ifdef STRIPS\n"                                                          \
+  "  float s = dot(strip_across, gl_FragCoord.xy / viewport * 2.0 - 1.0);\n" \
+  "  if (s < strip_bounds.x || s > strip_bounds.y) discard;\n"               \
+  "#endif\n"                                                                 \
+  "}\n"
+
 // Counts: additive target (R32F, blended ONE + ONE) or, with colour writes off, the stencil.
 // z-pass adds a front face's weight, z-fail subtracts it (kRuleSign), back faces the opposite.
-inline constexpr const char* kCountFragment = R"(#version 450 core
+// Its text follows a "#version" line (and a "#define STRIPS" one for the strips' variant).
+inline constexpr const char* kCountFragment = SHADOWVOL_GLSL_STRIP R"(
 flat in int primitive_weight;
 layout(location = 3) uniform float rule_sign;
 layout(location = 0) out float count;
-void main() { count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0); }
+void main() {
+  keep_to_strip();
+  count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
+}
 )";
 
 // The log light map of transparent casters (RGBA32F, blended ONE + ONE; Kim et al. §3, Eq. 3):
-// each count, as above, times its caster's log transmittance (per_count).
-inline constexpr const char* kLightMapFragment = R"(#version 450 core
+// each count, as above, times its caster's log transmittance (per_count). After a "#version".
+inline constexpr const char* kLightMapFragment = SHADOWVOL_GLSL_STRIP R"(
 flat in int primitive_weight;
 layout(location = 3) uniform float rule_sign;
 layout(location = 19) uniform vec3 per_count;
 layout(location = 0) out vec4 log_light;
 void main() {
+  keep_to_strip();
   float count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
   log_light = vec4(count * per_count, 0.0);
 }
 )";
+
+#undef SHADOWVOL_GLSL_STRIP
 
 // The frame out: lit colour or background, to sRGB.
 inline constexpr const char* kFullscreenVertex = R"(#version 450 core

@@ -60,27 +60,19 @@ inline float plane_distance(int plane, const glm::vec4& v) {
   }
 }
 
-// Clipped against every plane in turn (clip_polygon.h: watertight along every cut), then the
-// draw's own (ClipPlanes).
-constexpr int kMaxPolygon = 3 + kPlanes + 2;
+// Clipped against every plane in turn (clip_polygon.h: watertight along every cut).
+constexpr int kMaxPolygon = 3 + kPlanes;
 struct Polygon {
   std::array<glm::vec4, kMaxPolygon> v;
   int n = 0;
 };
 
-bool clip(const glm::vec4* tri, const ClipPlanes& extra, Polygon& out, bool& clipped) {
+bool clip(const glm::vec4* tri, Polygon& out, bool& clipped) {
   out.v[0] = tri[0], out.v[1] = tri[1], out.v[2] = tri[2], out.n = 3;
   clipped = false;
   for (int plane = 0; plane < kPlanes; ++plane) {
     clipped |= clip_polygon(out.v, out.n,
                             [plane](const glm::vec4& v) { return plane_distance(plane, v); });
-    if (out.n < 3) return false;
-  }
-  for (int k = 0; k < extra.count; ++k) {
-    const glm::vec4 plane = extra.planes[k];
-    clipped |= clip_polygon(out.v, out.n, [plane](const glm::vec4& v) {
-      return plane.x * v.x + plane.y * v.y + plane.z * v.z + plane.w * v.w;
-    });
     if (out.n < 3) return false;
   }
   return true;
@@ -284,12 +276,29 @@ struct TileDepthPlane {
 // functions: within a tile that an edge cuts, E = E0 + 256 k, with k = dx j - dy i below 2^28,
 // so E >= 0 exactly when floor(E0 / 256) + k >= 0, and floor(E0 / 256) is itself below 2^28
 // there. `work`: the band's TileWork entries, or null to record none.
+// A ScreenStrip in pixels: s at the centre of pixel (px, py) is ds_dx px + ds_dy py + s0.
+struct StripInPixels {
+  double ds_dx = 0, ds_dy = 0, s0 = 0;
+  float lo = -INFINITY, hi = INFINITY;
+  bool whole = true;
+  StripInPixels() = default;
+  StripInPixels(const ScreenStrip& strip, int width, int height)
+      : ds_dx(2.0 * strip.across.x / width),
+        ds_dy(-2.0 * strip.across.y / height),
+        s0(strip.across.x * (1.0 / width - 1.0) + strip.across.y * (1.0 - 1.0 / height)),
+        lo(strip.lo),
+        hi(strip.hi),
+        whole(strip.whole()) {}
+  double at(int px, int py) const { return ds_dx * px + ds_dy * py + s0; }
+};
+
 template <class TileTest, class Row>
 void raster(const Target& target, const Setup& s, int band, Counters& counters, TileWork* work,
-            TileTest&& tile_test, Row&& row) {
+            const StripInPixels& strip, TileTest&& tile_test, Row&& row) {
   const int y0 = band * kTileSize, y1 = std::min(target.height, y0 + kTileSize) - 1;
   int px0 = 0, px1 = 0;
   if (!columns_in_rows(s, y0, y1, target.width, px0, px1)) return;
+  const Floats ds_lane = static_cast<float>(strip.ds_dx) * kLaneOffset;
   const float zlo_triangle = std::min({s.v[0].z, s.v[1].z, s.v[2].z}) - kDepthSlack;
   const float zhi_triangle = std::max({s.v[0].z, s.v[1].z, s.v[2].z}) + kDepthSlack;
   const int rows = y1 - y0 + 1;
@@ -316,6 +325,19 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters, 
     const int x0 = tx * kTileSize, lanes = std::min(target.width - x0, kTileSize);
     if (edge[0] + reach_up[0] < 0 || edge[1] + reach_up[1] < 0 || edge[2] + reach_up[2] < 0)
       continue;  // outside one edge
+    // The strip: the tile outside it is skipped, inside it taken whole, else tested per pixel.
+    Mask strip_rows[kTileSize];
+    if (!strip.whole) {
+      const double s00 = strip.at(x0, y0), s10 = strip.at(x0 + lanes - 1, y0),
+                   s01 = strip.at(x0, y0 + rows - 1), s11 = strip.at(x0 + lanes - 1, y0 + rows - 1);
+      const double smin = std::min({s00, s10, s01, s11}), smax = std::max({s00, s10, s01, s11});
+      if (smax < strip.lo || smin > strip.hi) continue;
+      const bool partial = smin < strip.lo || smax > strip.hi;
+      for (int j = 0; j < rows; ++j) {
+        const Floats at = static_cast<float>(strip.at(x0, y0 + j)) + ds_lane;
+        strip_rows[j] = partial ? (at >= strip.lo) & (at <= strip.hi) : Mask{} - 1;
+      }
+    }
     std::int32_t q[3], step_i[3], step_j[3];
     bool interior = true;
     for (int k = 0; k < 3; ++k) {
@@ -344,11 +366,9 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters, 
            e2 = q[2] + step_i[2] * kLaneIndex;
       const Mask down0 = Mask{} + step_j[0], down1 = Mask{} + step_j[1], down2 = Mask{} + step_j[2];
       for (int j = 0; j < rows; ++j, e0 += down0, e1 += down1, e2 += down2) {
-        Mask covered = in_image;
-        if constexpr (!inside) {
-          covered &= (e0 | e1 | e2) >= 0;
-          if (!any(covered)) continue;
-        }
+        Mask covered = strip.whole ? in_image : in_image & strip_rows[j];
+        if constexpr (!inside) covered &= (e0 | e1 | e2) >= 0;
+        if (!any(covered)) continue;
         const Floats z = (plane.z_tile + dzdy * j) + dz_lane;
         covered_count.add(covered);
         passed_count.add(row(static_cast<std::size_t>(y0 + j) * width + x0, covered,
@@ -485,8 +505,7 @@ Target::Scratch& scratch_of(Target& target) {
 
 // Clips, projects and sets up every triangle of a draw, chunks of kSetupChunk in parallel, into
 // the scratch's chunks, in order, with the tile rows each set-up triangle overlaps.
-void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
-             const ClipPlanes& extra = {}) {
+void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters) {
   assert(triangles.size() % 3 == 0);
   Target::Scratch& scratch = scratch_of(target);
   const std::size_t n = triangles.size() / 3;
@@ -505,7 +524,7 @@ void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& cou
       ++chunk.counters.triangles_in;
       Polygon poly;
       bool clipped = false;
-      if (!clip(&triangles[3 * t], extra, poly, clipped)) {
+      if (!clip(&triangles[3 * t], poly, clipped)) {
         ++chunk.counters.triangles_clipped;
         ++chunk.counters.triangles_culled;
         continue;
@@ -571,7 +590,7 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
     float* depth = target.depth.data();
     std::uint32_t* ids = target.id.data();
     raster(
-        target, p.setup, band, c, nullptr,
+        target, p.setup, band, c, nullptr, StripInPixels{},
         [](int, int, float, float) {
           return TileDecision{TileVerdict::test, CountRule::zpass};
         },
@@ -606,11 +625,11 @@ CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::ve
 
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
-                 DepthBounds bounds, const SplitPlane& split, const ClipPlanes& clip) {
+                 DepthBounds bounds, const SplitPlane& split, const ScreenStrip& strip) {
   assert(weights.size() * 3 == triangles.size());
   assert(target.tile_work.empty() ||
          target.tile_work.size() == static_cast<std::size_t>(target.tiles_x) * target.tiles_y);
-  prepare(target, triangles, counters, clip);
+  prepare(target, triangles, counters);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
   // one. It is accepted whole when every fragment passes against every stored depth, within the
@@ -642,6 +661,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                         tile_rule};
   };
   const std::uint64_t passed_before = counters.pixels_passed;
+  const StripInPixels strip_in_pixels(strip, target.width, target.height);
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
     // it subtract; cover and behind: every face in front of it, or behind it, adds.
@@ -655,7 +675,7 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                          ? nullptr
                          : &target.tile_work[static_cast<std::size_t>(band) * target.tiles_x];
     raster(
-        target, p.setup, band, c, work, tile_test,
+        target, p.setup, band, c, work, strip_in_pixels, tile_test,
         // By value: the stores into count may alias anything an int32 reference names.
         [depth, count, bounds, front_delta](std::size_t first, const Mask& covered, const Floats& z,
                                             auto lanes, auto checks, CountRule tile_rule) {

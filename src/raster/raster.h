@@ -24,13 +24,14 @@
 //     default front face) is front-facing.
 #pragma once
 
-#include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -165,12 +166,16 @@ struct DepthBounds {
   float zmax = 1.0f;
 };
 
-// Up to two more clip planes for a draw (clip space, keeping dot(plane, v) >= 0), clipped like
-// the near plane: CC shadow volumes' discrete clamping (Lloyd et al. 2004 §3.2.2) draws a volume
-// only within strips of the image, between planes through the eye.
-struct ClipPlanes {
-  std::array<glm::vec4, 2> planes{};
-  int count = 0;
+// A strip of the image a draw is limited to: the pixels whose centre has s = across . ndc in
+// [lo, hi] (NDC: x right, y up, each -1 .. 1). CC shadow volumes' discrete clamping (Lloyd et al.
+// 2004 §3.2.2) draws a volume only between slicing planes through the eye, which are lines on the
+// image. Tested per pixel (and per tile, to skip or accept whole tiles), never by cutting
+// triangles: a cut triangle would rasterize to other depths, and a light cap must keep those of
+// its surface (DESIGN.md "Numerics").
+struct ScreenStrip {
+  glm::vec2 across{1.0f, 0.0f};
+  float lo = -INFINITY, hi = INFINITY;
+  bool whole() const { return lo == -INFINITY && hi == INFINITY; }
 };
 
 // Count pass: each triangle changes the count of the pixels it covers by its signed weight
@@ -178,10 +183,10 @@ struct ClipPlanes {
 // whose depth bounds prove that no pixel can pass the rule's test, or whose depths all lie
 // outside `bounds`, are skipped whole. `split.plane` picks each tile's rule under
 // CountRule::split, and limits any rule's draw to some tiles when split.tiles is not `all`.
-// `clip`: what of each triangle is drawn (ClipPlanes).
+// `strip`: the pixels it may change (ScreenStrip).
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
                  DepthBounds bounds = {}, const SplitPlane& split = {},
-                 const ClipPlanes& clip = {});
+                 const ScreenStrip& strip = {});
 
 }  // namespace shadowvol::raster

@@ -48,6 +48,31 @@ Expected<Cull> parse_cull(std::string_view name) {
   return parse_name(name, {Cull::none, Cull::frustum, Cull::occlusion}, "culling");
 }
 
+std::string_view to_string(Clamp clamp) {
+  switch (clamp) {
+    case Clamp::none:
+      return "none";
+    case Clamp::continuous:
+      return "continuous";
+    case Clamp::discrete:
+      return "discrete";
+    case Clamp::both:
+      return "both";
+  }
+  return "unknown";
+}
+
+Expected<Clamp> parse_clamp(std::string_view name) {
+  return parse_name(name, {Clamp::none, Clamp::continuous, Clamp::discrete, Clamp::both},
+                    "clamping");
+}
+
+Expected<void> check_slices(int slices) {
+  if (slices < 1 || slices > kMaxSlices)
+    return make_error(std::to_string(slices) + " is outside 1 .. " + std::to_string(kMaxSlices));
+  return {};
+}
+
 std::string_view to_string(SplitPlanes planes) {
   return planes == SplitPlanes::laine ? "laine" : "sampled";
 }
@@ -73,6 +98,8 @@ Expected<void> check_options(const RenderOptions& options) {
                       std::to_string(raster::kMaxViewport));
   if (auto ok = check_light_view_size(options.light_view_size); !ok)
     return make_error("light view size " + ok.error().message);
+  if (auto ok = check_slices(options.slices); !ok)
+    return make_error("slices: " + ok.error().message);
   return {};
 }
 
@@ -98,14 +125,18 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
 
 FrameStats& FrameStats::operator+=(const FrameStats& other) {
   using S = FrameStats;
-  for (double S::*ms :
-       {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback, &S::ms_cull})
+  for (double S::*ms : {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback,
+                        &S::ms_cull, &S::ms_clamp})
     this->*ms += other.*ms;
-  cull_queries += other.cull_queries;
+  for (std::uint64_t S::*n :
+       {&S::cull_queries, &S::volume_segments, &S::slice_queries, &S::clamp_pairs, &S::clamp_swaps,
+        &S::intervals_merged_by_cost, &S::fill, &S::stencil_writes})
+    this->*n += other.*n;
   for (std::size_t S::*n : {&S::triangles, &S::volume_primitives}) this->*n += other.*n;
-  for (int S::*n : {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::volumes_built,
-                    &S::volumes_reused, &S::casters_culled_in_shadow, &S::casters_culled_unseen,
-                    &S::light_views})
+  for (int S::*n :
+       {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::volumes_built,
+        &S::volumes_reused, &S::casters_culled_in_shadow, &S::casters_culled_unseen,
+        &S::light_views, &S::sub_objects_culled, &S::volumes_clamped, &S::volumes_clamped_away})
     this->*n += other.*n;
   for (raster::Counters S::*c : {&S::depth, &S::counts, &S::split_sampling}) this->*c += other.*c;
   for (std::vector<int> S::*per_object : {&S::zfail_lights, &S::culled_lights}) {

@@ -85,6 +85,23 @@ std::string_view to_string(Cull cull);
 inline constexpr int kMinLightView = 16, kMaxLightView = 4096;
 Expected<Cull> parse_cull(std::string_view name);
 
+// CC shadow volumes' clamping (Lloyd et al. 2004 §3.2; render/cc_shadow_volumes.h): volumes
+// kept only where receivers may lie. `continuous` (§3.2.1): per caster (or sub-object), the
+// intervals of depth along the light's view that hold receivers' boxes, each drawn as a segment
+// closed by caps. `discrete` (§3.2.2, made conservative as §3.2.3 says): the image split into
+// strips by planes through the eye; a caster's volume drawn only in the strips where, in the
+// light's view, a visible sample of the strip may lie behind it. `both` (Fig. 2(d)): the
+// continuous segments, drawn only in the discrete strips.
+enum class Clamp : std::uint8_t { none, continuous, discrete, both };
+std::string_view to_string(Clamp clamp);
+Expected<Clamp> parse_clamp(std::string_view name);
+inline bool clamps_continuous(Clamp c) { return c == Clamp::continuous || c == Clamp::both; }
+inline bool clamps_discrete(Clamp c) { return c == Clamp::discrete || c == Clamp::both; }
+// Discrete clamping's slices: the default from the sweep of `bench --suite cc` (docs/
+// cc-shadow-volumes.md), and the most a light's view keeps layers for.
+inline constexpr int kDefaultSlices = 8, kMaxSlices = 64;
+Expected<void> check_slices(int slices);
+
 struct RenderOptions {
   int width = 960;
   int height = 540;
@@ -94,8 +111,13 @@ struct RenderOptions {
   SplitPlanes split_planes = SplitPlanes::sampled;
   SplitParts split_parts = SplitParts::each;
   Cull cull = Cull::none;
-  // The side of each light view culling tests in, in pixels (a cube's faces each).
+  Clamp clamp = Clamp::none;
+  int slices = kDefaultSlices;  // discrete clamping's strips of the image
+  // The side of each light view culling and clamping test in, in pixels (a cube's faces each).
   int light_view_size = 512;
+  // Measures the fill of the volumes (FrameStats::fill, and stencil_writes on the gl backend)
+  // in passes of their own, apart from the frame's times.
+  bool count_fill = false;
   // Overlays the edges of every side quad (the silhouette edge and its two rays to infinity),
   // one colour per light, so that a person can see the volumes.
   bool show_volumes = false;
@@ -110,6 +132,14 @@ struct RenderOptions {
 struct Image {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgba;  // 8-bit sRGB, row 0 at the top
+};
+
+// What drawing shadow volumes costs on a backend (CC shadow volumes §3.2.1's v and r): per
+// vertex of a volume, and per pixel it covers, in milliseconds, as FrameBackend::
+// measure_volume_costs finds them.
+struct VolumeCosts {
+  double ms_per_vertex = 0.0, ms_per_pixel = 0.0;
+  bool measured() const { return ms_per_vertex > 0.0 || ms_per_pixel > 0.0; }
 };
 
 struct FrameStats {
@@ -130,6 +160,23 @@ struct FrameStats {
   std::uint64_t cull_queries = 0;
   int light_views = 0;
   double ms_cull = 0;
+  // Sub-objects (CC §3, §3.3), over all lights: culled apart from the rest of their object.
+  int sub_objects_culled = 0;
+  // Clamping (RenderOptions::clamp), over all lights: the time it took; volumes whose segments
+  // were clamped continuously; volumes no strip holds (not drawn); the segments drawn (a
+  // volume's intervals over its sub-objects, times its strips; 1 for a volume drawn whole); the
+  // discrete tests (a box in a strip, per light view); and the continuous overlap tests' pairs,
+  // the insertion sorts' interchanges (temporal coherence) and intervals merged because V > R.
+  double ms_clamp = 0;
+  int volumes_clamped = 0, volumes_clamped_away = 0;
+  std::uint64_t volume_segments = 0, slice_queries = 0;
+  std::uint64_t clamp_pairs = 0, clamp_swaps = 0, intervals_merged_by_cost = 0;
+  // RenderOptions::count_fill: the pixels the volumes drawn touch with the depth test off (CC
+  // §4's fill), and those whose count they change (stencil writes; on the soft backend also
+  // counts.count_updates, always).
+  std::uint64_t fill = 0, stencil_writes = 0;
+  // Continuous clamping's v and r, as the backend measured them (not added up over frames).
+  VolumeCosts volume_costs;
   raster::Counters depth, counts;
   // Software backend, SplitPlanes::sampled: the split-plane sampler's own drawing (on a target of
   // one pixel per sampled tile), apart from `counts` and from the tile work, since its samples

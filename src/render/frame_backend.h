@@ -55,6 +55,10 @@ class FrameBackend {
   virtual bool can_present() const { return false; }
   // Waits for the work given so far to end, so that a time taken after it is the work's own.
   virtual void finish() {}
+  // CC shadow volumes §3.2.1's v and r on this backend: a typical set of volumes drawn small (10 x
+  // 10 pixels: v, per vertex) and large (r, per pixel covered, v's share taken off), best of a few
+  // runs. Outside any frame; leaves no state a frame sees.
+  virtual VolumeCosts measure_volume_costs() = 0;
 
   // Sizes the targets for the frame and takes its inputs.
   virtual void begin_frame(const FrameInputs& inputs) = 0;

@@ -174,7 +174,11 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
       v.rule = zfail ? VolumeRule::zfail : v.split.empty() ? VolumeRule::zpass : VolumeRule::split;
       v.counts_caps = v.rule != VolumeRule::zpass;
       v.light_caps_everywhere = op.glass_group >= 0;
-      v.culled = false;  // until the culling, after the depth pass
+      v.culled = false;  // until the culling and clamping, after the depth pass
+      v.clamp.face_leaf = v.clamp.vertex_leaf_offsets = v.clamp.vertex_leaves = {};
+      v.clamp.offsets.clear();
+      v.clamp.intervals.clear();
+      v.strips.clear();
       v.object_light = object_space_light(object, scene.lights[l].position);
       // Planes map from the eye-relative world to the object by the transpose of its model.
       const glm::vec4 object_far_plane =

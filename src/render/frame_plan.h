@@ -12,6 +12,7 @@
 // §2 (transparent casters in groups of one material).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -84,15 +85,30 @@ struct VolumePlan {
   // What depth_bounds was computed from: a plan reused for the next frame recomputes them only
   // where these changed (each takes a shadow volume of the box).
   std::optional<DepthBoundsInputs> depth_bounds_of;
-  // Culled (RenderOptions::cull, render/caster_culling.h): no pixel's count changes without it,
-  // so it is neither built nor counted.
+  // Culled (RenderOptions::cull, or no strip of discrete clamping holds it; render/
+  // cc_shadow_volumes.h): no pixel's count changes without it, so it is neither built nor
+  // counted.
   bool culled = false;
+  // CC shadow volumes' sub-objects and continuous clamping (render/cc_shadow_volumes.h): with
+  // leaves, the volume is built clamped (core/volume.h), in the object's space, and its dark caps,
+  // which then lie among the receivers, count under every rule (and in the pre-fill).
+  VolumeClamp clamp;
+  // Discrete clamping: the runs of strips of the image the volume is drawn in, each drawn apart;
+  // empty: drawn once, over the whole image.
+  std::vector<raster::ScreenStrip> strips;
   // Under VolumeRule::split: one PartSplit per part of the object (Topology::vertex_part) under
   // SplitParts::each, or one for the whole volume; else empty.
   std::vector<PartSplit> split;
 
   // Whether the parts are counted apart, each by its own split plane.
   bool by_part() const { return split.size() > 1; }
+  bool clamped() const { return clamp.leaf_count() > 0; }
+  // Whether the dark caps count where z-pass does too (not only where z-fail does).
+  bool dark_caps_everywhere() const { return clamped(); }
+  // Segments drawn: the clamp's intervals (or 1), once per strip (or once).
+  std::size_t segments() const {
+    return (clamped() ? clamp.intervals.size() : 1) * std::max<std::size_t>(strips.size(), 1);
+  }
 };
 
 // One object of the frame.

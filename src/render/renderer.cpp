@@ -75,6 +75,10 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   const std::size_t lights = scene.lights.size();
   const bool glass = plan_.has_glass();
 
+  // Continuous clamping weighs each interval by the backend's costs, measured once, at start.
+  if (clamps_continuous(options.clamp) && !costs_.measured())
+    costs_ = backend_->measure_volume_costs();
+  stats.volume_costs = costs_;
   backend_->begin_frame(in);
   // A layer: its depth pass over the depth target as it stands, its ids, then per light its
   // shadows and light.
@@ -83,17 +87,19 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
       if (plan_.transparent(o) == (layer == Layer::glass))
         stats.triangles += scene.objects[o].mesh->triangle_count();
-    // Culling by occlusion takes the opaque layer's ids even for a frame shown on the device.
+    // Culling by occlusion and discrete clamping take the opaque layer's ids (their visible
+    // samples) even for a frame shown on the device.
     const bool opaque = layer == Layer::opaque;
-    if (read_back || (opaque && options.cull == Cull::occlusion)) {
+    const bool ids = opaque && CcShadowVolumes::needs_ids(options);
+    if (read_back || ids) {
       timed(*backend_, stats.ms_readback, [&] { backend_->read_ids(layer, out); });
       size_layer(out, lights, pixels, glass);
     }
-    if (opaque && options.cull != Cull::none)
-      timed(*backend_, stats.ms_cull, [&] {
-        culling_.cull(scene, options, plan_, options.cull == Cull::occlusion ? &out : nullptr,
-                      stats);
-      });
+    if (opaque && (options.cull != Cull::none || options.clamp != Clamp::none)) {
+      backend_->finish();
+      cc_.apply(scene, options, plan_, ids ? &out : nullptr, costs_, backend_->counts_cpu_volumes(),
+                stats);
+    }
     for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out, read_back);
   };
   draw_layer(Layer::opaque, frame);
@@ -122,7 +128,9 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     backend_->volumes_ready(l, built ? volumes_.update(in.scene, plan_, l, stats) : none_rebuilt_);
   });
   auto count = [&](std::size_t o) {
-    if (plan_.volume(l, o).culled) return;
+    const VolumePlan& v = plan_.volume(l, o);
+    if (v.culled) return;
+    stats.volume_segments += v.segments();
     if (cpu) stats.volume_primitives += volumes_.volume(l, o).primitive_count();
     backend_->count_volume(l, o);
   };

@@ -1,8 +1,9 @@
 // shadowvol render: Renderer, the frame pipeline, written once for every backend.
 //
 // Owns: the sequence of a frame and what it keeps between frames (the plan's storage, the CPU
-// volume cache). Per frame: the plan (render/frame_plan.h); the opaque layer's depth pass; the
-// culling of casters whose volumes change no pixel (render/caster_culling.h); per
+// volume cache, the backend's measured volume costs). Per frame: the plan (render/frame_plan.h);
+// the opaque layer's depth pass; CC shadow volumes' culling of casters whose volumes change no
+// pixel and clamping of the rest to where receivers lie (render/cc_shadow_volumes.h); per
 // light its volumes, the opaque casters' counts (the shadow mask), the transparent casters'
 // light intensity map group by group, and the lit pass; with transparent casters, what is seen
 // through them and the glass layer, lit the same way; the colour; read-back. Each step is a verb
@@ -17,7 +18,7 @@
 #include <memory>
 #include <vector>
 
-#include "render/caster_culling.h"
+#include "render/cc_shadow_volumes.h"
 #include "render/frame.h"
 #include "render/frame_backend.h"
 #include "render/frame_plan.h"
@@ -52,7 +53,8 @@ class Renderer {
 
   std::unique_ptr<FrameBackend> backend_;
   FramePlan plan_;
-  CasterCulling culling_;
+  CcShadowVolumes cc_;
+  VolumeCosts costs_;  // measured on the backend at the first frame that clamps continuously
   VolumeCache volumes_;
   std::vector<std::uint8_t> none_rebuilt_;  // for a backend that builds its own volumes
 };

@@ -14,14 +14,17 @@ const std::vector<std::uint8_t>& VolumeCache::update(const Scene& scene, const F
     const VolumePlan& v = plan.volume(light, o);
     Entry& c = cache[o];
     if (v.culled) continue;  // kept as it was: built again if it changed when next drawn
-    if (c.topology == object.topology && c.light == v.object_light && c.options == v.build) {
+    if (c.topology == object.topology && c.light == v.object_light && c.options == v.build &&
+        c.clamp == v.clamp) {
       ++stats.volumes_reused;
       continue;
     }
     c.topology = object.topology;
     c.light = v.object_light;
     c.options = v.build;
-    jobs_.push_back({c.topology.get(), v.object_light, v.build, &c.volume});
+    c.clamp = v.clamp;
+    jobs_.push_back(
+        {c.topology.get(), v.object_light, v.build, &c.volume, v.clamped() ? &c.clamp : nullptr});
     rebuilt_[o] = 1;
     ++stats.volumes_built;
   }

@@ -2,7 +2,7 @@
 //
 // Owns: per light and object the volume core builds (in the object's own space) and what it was
 // built from; a volume is rebuilt (in parallel, render/volume_builder.h) only where its object's
-// topology, its light seen from the object or its VolumePlan's build options changed.
+// topology, its light seen from the object or its VolumePlan's build options or clamp changed.
 #pragma once
 
 #include <cstddef>
@@ -37,6 +37,7 @@ class VolumeCache {
     std::shared_ptr<const Topology> topology;
     glm::vec4 light{0.0f};
     VolumeOptions options;
+    VolumeClamp clamp;  // the plan's, copied: what the volume was built with
     VolumeBuffer volume;
   };
   VolumeBuilder builder_;

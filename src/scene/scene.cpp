@@ -53,6 +53,8 @@ Scene scene_at_frame(const Scene& scene, int frame) {
     c.position = c.target + glm::vec3(turn * glm::vec4(c.position - c.target, 0.0f));
     c.up = glm::vec3(turn * glm::vec4(c.up, 0.0f));
   }
+  c.position += c.move * f;
+  c.target += c.move * f;
   return s;
 }
 
@@ -355,6 +357,84 @@ Scene robots() {
   return s;
 }
 
+// CC shadow volumes' corridor (Lloyd et al. 2004 §4, Fig. 1): a long hall open to the sun, its
+// roof carried by trusses that hold most of its triangles and cast their shadows down across empty
+// space onto the floor and the walls, with purlins and bracing between them, lamps hung from
+// every other truss and a few crates on the floor. The camera walks its length (a unit a frame:
+// 48 frames from one end to the other), looking ahead and up: clamping's case. About 100k
+// triangles.
+Scene corridor() {
+  Scene s;
+  s.name = "corridor";
+  constexpr float kHalfWidth = 4.5f, kHalfLength = 32.0f, kWallHeight = 8.0f;
+  constexpr float kTrussY = 5.4f, kTrussHeight = 0.9f, kTrussDepth = 0.6f;
+  constexpr int kTrusses = 24, kPanels = 12;
+  const glm::vec3 concrete(0.62f, 0.6f, 0.57f), steel(0.45f, 0.5f, 0.55f);
+  s.objects.push_back(make_object(
+      "floor", make_box({-kHalfWidth, -0.3f, -kHalfLength}, {kHalfWidth, 0.0f, kHalfLength}),
+      glm::mat4(1.0f), {0.7f, 0.68f, 0.64f}));
+  for (const float side : {-1.0f, 1.0f}) {
+    const float inner = side * kHalfWidth, outer = side * (kHalfWidth + 0.4f);
+    s.objects.push_back(make_object(side < 0 ? "left_wall" : "right_wall",
+                                    make_box({std::min(inner, outer), 0.0f, -kHalfLength},
+                                             {std::max(inner, outer), kWallHeight, kHalfLength}),
+                                    glm::mat4(1.0f), concrete));
+  }
+  const auto truss = std::make_shared<const Mesh>(
+      make_truss(kHalfWidth, kTrussHeight, kTrussDepth, kPanels, 0.045f, 12));
+  const auto truss_topology = std::make_shared<const Topology>(build_topology(*truss));
+  const float spacing = 2.0f * (kHalfLength - 2.0f) / float(kTrusses - 1);
+  auto truss_z = [&](int k) { return -kHalfLength + 2.0f + spacing * float(k); };
+  for (int k = 0; k < kTrusses; ++k)
+    s.objects.push_back({"truss" + std::to_string(k),
+                         truss,
+                         truss_topology,
+                         glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, kTrussY, truss_z(k))),
+                         {steel},
+                         {}});
+  // Purlins along the hall between the trusses' top panel points, and cross bracing in every
+  // other bay: one long object, which CC splits into sub-objects.
+  Mesh purlins;
+  const float step = 2.0f * kHalfWidth / float(kPanels);
+  for (int k = 0; k + 1 < kTrusses; ++k) {
+    const float z0 = truss_z(k), z1 = truss_z(k + 1), y = kTrussY + kTrussHeight;
+    for (int i = 0; i < kPanels; ++i) {
+      const float x = -kHalfWidth + step * (float(i) + 0.5f);
+      append_mesh(purlins, make_tube({x, y, z0 + 0.5f * kTrussDepth},
+                                     {x, y, z1 - 0.5f * kTrussDepth}, 0.035f, 0.035f, 12));
+    }
+    if (k % 2 == 0)  // an X of rods, each in four lengths joined at turnbuckles
+      for (const float side : {-1.0f, 1.0f}) {
+        const glm::vec3 a{-side * (kHalfWidth - 0.5f), y, z0}, b{side * (kHalfWidth - 0.5f), y, z1};
+        for (int j = 0; j < 4; ++j)
+          append_mesh(purlins, make_tube(a + (b - a) * (float(j) / 4.0f),
+                                         a + (b - a) * (float(j + 1) / 4.0f), 0.03f, 0.03f, 12));
+      }
+  }
+  s.objects.push_back(make_object("purlins", std::move(purlins), glm::mat4(1.0f), steel));
+  // Lamps on cables under every other truss.
+  for (int k = 1; k < kTrusses; k += 2) {
+    Mesh lamp = make_tube({0.0f, kTrussY, 0.0f}, {0.0f, kTrussY - 1.6f, 0.0f}, 0.015f, 0.015f, 6);
+    append_mesh(lamp, make_sphere({0.0f, kTrussY - 1.85f, 0.0f}, 0.25f, 12, 16));
+    s.objects.push_back(make_object("lamp" + std::to_string(k / 2), std::move(lamp),
+                                    glm::translate(glm::mat4(1.0f), {1.2f, 0.0f, truss_z(k)}),
+                                    {0.85f, 0.8f, 0.6f}));
+  }
+  for (int i = 0; i < 6; ++i) {
+    const float z = -22.0f + 9.0f * float(i), x = i % 2 ? 2.6f : -2.8f;
+    s.objects.push_back(make_object("crate" + std::to_string(i),
+                                    make_box({-0.6f, 0.0f, -0.6f}, {0.6f, 1.1f, 0.6f}),
+                                    place({x, 0.0f, z}, 17.0f * float(i)), {0.55f, 0.42f, 0.3f}));
+  }
+  // The sun, high and from the side, through the open roof.
+  s.lights.push_back({{0.3f, 1.0f, 0.2f, 0.0f}, {1.0f, 0.96f, 0.88f}, 1.0f});
+  s.ambient = glm::vec3(0.15f);
+  s.camera = {{-1.4f, 1.7f, -28.0f}, {0.0f, 3.6f, -18.0f}};
+  s.camera.fov_y_degrees = 60.0f;
+  s.camera.move = {0.0f, 0.0f, 1.0f};
+  return s;
+}
+
 // `decomposed`: each connected part of the tree (a branch with its leaves) an object of its own,
 // so that each gets its own split plane (Laine 2005 §6).
 Scene tree(bool decomposed) {
@@ -392,6 +472,7 @@ constexpr Builtin kBuiltins[] = {{"demo", demo},
                                  {"knight", knight},
                                  {"knights16", knights16},
                                  {"robots", robots},
+                                 {"corridor", corridor},
                                  {"tree", tree_whole},
                                  {"tree-decomposed", tree_decomposed}};
 

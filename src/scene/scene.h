@@ -87,6 +87,9 @@ struct Camera {
   // Turns about the vertical line through `target`, frame by frame (position and up turn, the
   // target stays): Laine 2005's test animations move the viewpoint as well as the light.
   float orbit_degrees_per_frame = 0.0f;
+  // Travels, frame by frame, by `move` (world space): position and target alike, after the
+  // orbit (a walk along a path, as the paths of CC shadow volumes' measurements, §4).
+  glm::vec3 move{0.0f};
 
   // The view of eye-relative space, where the eye is the origin: a rotation alone.
   // DESIGN.md "Numerics": geo-referenced models sit 1e5-1e6 units out, where float leaves
@@ -134,6 +137,10 @@ bool has_transparent_casters(const Scene& scene);
 //   nonmanifold       open, non-manifold, flipped-face, sliver and coincident-face casters
 //   glass             colored transparent casters (closed, open, non-manifold) overlapping, an
 //                     opaque one, a white ground and two lights: partial, colored shadows
+//   corridor          trusses overhead (most of its 100k triangles) over a floor between walls,
+//                     the camera walking its length: CC shadow volumes' clamping case
+//   robots            a crowd of robots marching in a walled room, a low light behind crates:
+//                     CC shadow volumes' culling case
 Expected<Scene> builtin_scene(std::string_view name);
 std::vector<std::string_view> builtin_scene_names();
 

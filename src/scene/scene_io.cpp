@@ -142,7 +142,7 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
 
   if (!root.contains("camera")) return make_error(name + ": scene.camera: missing");
   const json& cam = root["camera"];
-  if (!r.keys(cam, "scene.camera", {"position", "target", "up", "fov", "near", "orbit"}))
+  if (!r.keys(cam, "scene.camera", {"position", "target", "up", "fov", "near", "orbit", "move"}))
     return make_error(r.error);
   for (const char* required : {"position", "target"})
     if (!cam.contains(required))
@@ -166,8 +166,12 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
                                ? true
                                : r.fail(p, "the near distance must be positive"));
                  }) &&
-      r.optional(cam, "scene.camera", "orbit", [&](const json& v, const std::string& p) {
-        return r.number(v, p, scene.camera.orbit_degrees_per_frame);
+      r.optional(cam, "scene.camera", "orbit",
+                 [&](const json& v, const std::string& p) {
+                   return r.number(v, p, scene.camera.orbit_degrees_per_frame);
+                 }) &&
+      r.optional(cam, "scene.camera", "move", [&](const json& v, const std::string& p) {
+        return r.vec3(v, p, scene.camera.move);
       });
   if (!r.error.empty()) return make_error(r.error);
   if (glm::length(scene.camera.target - scene.camera.position) == 0.0f)

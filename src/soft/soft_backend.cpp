@@ -16,6 +16,7 @@
 
 #include "accel/near_plane.h"
 #include "render/shading.h"
+#include "render/volume_costs.h"
 
 namespace shadowvol::soft {
 namespace {
@@ -108,9 +109,9 @@ void SoftBackend::read_ids(Layer, SurfaceLayer& out) {
   out.face.resize(pixels);
   tbb::parallel_for(std::size_t{0}, pixels, [&](std::size_t p) {
     const std::uint32_t id = target_.id[p];
-    std::tie(out.object[p], out.face[p]) =
-        id == raster::Target::kNoId ? std::pair<std::int32_t, std::uint32_t>{-1, 0}
-                                    : in_->plan.object_of(id);
+    std::tie(out.object[p], out.face[p]) = id == raster::Target::kNoId
+                                               ? std::pair<std::int32_t, std::uint32_t>{-1, 0}
+                                               : in_->plan.object_of(id);
   });
 }
 
@@ -156,13 +157,15 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
     for (std::size_t p = 0; p < list.size(); ++p)
       keys_.insert(keys_.end(), per, 2 * (by_part ? list.parts[p] : 0) + cap);
   };
-  // First what counts in every tile: the sides, and a transparent caster's light caps; then the
-  // caps that count only where z-fail does.
+  // First what counts in every tile: the sides, a transparent caster's light caps, a clamped
+  // volume's dark caps (which lie among the receivers); then the caps that count only where
+  // z-fail does.
   add(v.sides, kQuadCorners, 0);
   if (vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 0);
+  if (vp.dark_caps_everywhere()) add(v.dark_caps, kTriangleCorners, 0);
   if (vp.counts_caps) {
     if (!vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 1);
-    add(v.dark_caps, kTriangleCorners, 1);
+    if (!vp.dark_caps_everywhere()) add(v.dark_caps, kTriangleCorners, 1);
   }
   // Depth bounds, Laine 2005 §7's (VolumePlan::depth_bounds). Pre-filled z-pass starts inside the
   // volume: a pixel beyond all of it must still count its way out, so no far bound.
@@ -172,17 +175,40 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
     prefill_tris_.clear();
     prefill_weights_.clear();
     prefill_keys_.clear();
-    append_near_plane_prefill(v.light_caps, op.model, sign, plan.lights[l], plan.view_proj,
-                              prefill_tris_, prefill_weights_, by_part ? &prefill_keys_ : nullptr);
+    // Every cap the segment from the light to the near plane may cross: a clamped volume's dark
+    // caps too.
+    for (const PrimitiveList* caps : {&v.light_caps, &v.dark_caps})
+      if (caps == &v.light_caps || vp.dark_caps_everywhere())
+        append_near_plane_prefill(*caps, op.model, sign, plan.lights[l], plan.view_proj,
+                                  prefill_tris_, prefill_weights_,
+                                  by_part ? &prefill_keys_ : nullptr);
   }
+  // Each draw once per strip of discrete clamping (or once), and measured for its fill where
+  // asked (CountRule::fill: the pixels it touches with the depth test off).
+  static const std::vector<raster::ScreenStrip> kWhole(1);
+  const std::vector<raster::ScreenStrip>& strips = vp.strips.empty() ? kWhole : vp.strips;
+  auto draw = [&](std::span<const glm::vec4> triangles, std::span<const std::int32_t> weights,
+                  raster::CountRule rule, raster::DepthBounds bounds,
+                  const raster::SplitPlane& split) {
+    for (const raster::ScreenStrip& strip : strips) {
+      const std::uint64_t writes = stats.counts.count_updates;
+      raster::draw_counts(target_, triangles, weights, rule, stats.counts, bounds, split, strip);
+      if (rule == raster::CountRule::prefill) continue;
+      stats.stencil_writes += stats.counts.count_updates - writes;
+      if (!in_->options.count_fill) continue;
+      raster::Counters fill;
+      const auto measuring = Clock::now();
+      raster::draw_counts(target_, triangles, weights, raster::CountRule::fill, fill, {},
+                          {split.plane, split.tiles}, strip);
+      stats.fill += fill.pixels_processed;
+      stats.ms_counts -= ms_since(measuring);  // not the frame's work
+    }
+  };
   if (splits.empty()) {
-    if (vp.prefill)
-      raster::draw_counts(target_, prefill_tris_, prefill_weights_, raster::CountRule::prefill,
-                          stats.counts);
-    raster::draw_counts(
-        target_, tris_, weights_,
-        vp.rule == VolumeRule::zfail ? raster::CountRule::zfail : raster::CountRule::zpass,
-        stats.counts, bounds);
+    if (vp.prefill) draw(prefill_tris_, prefill_weights_, raster::CountRule::prefill, {}, {});
+    draw(tris_, weights_,
+         vp.rule == VolumeRule::zfail ? raster::CountRule::zfail : raster::CountRule::zpass, bounds,
+         {});
   } else {
     volume_groups_.group(tris_, weights_, keys_, 2 * splits.size());
     if (vp.prefill) {
@@ -198,15 +224,13 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
         plane = candidates[split_sampler_.cheapest(target_, everywhere, caps, bounds, candidates,
                                                    stats.split_sampling)];
       if (vp.prefill)
-        raster::draw_counts(target_, prefill_groups_.triangles_of(p, p + 1),
-                            prefill_groups_.weights_of(p, p + 1), raster::CountRule::prefill,
-                            stats.counts, {}, {plane, raster::SplitTiles::zpass_only});
+        draw(prefill_groups_.triangles_of(p, p + 1), prefill_groups_.weights_of(p, p + 1),
+             raster::CountRule::prefill, {}, {plane, raster::SplitTiles::zpass_only});
       // Laine 2005 §3.3: the sides in every tile, the caps only where z-fail counts.
-      raster::draw_counts(target_, everywhere, volume_groups_.weights_of(2 * p, 2 * p + 1),
-                          raster::CountRule::split, stats.counts, bounds, {plane});
-      raster::draw_counts(target_, caps, volume_groups_.weights_of(2 * p + 1, 2 * p + 2),
-                          raster::CountRule::split, stats.counts, bounds,
-                          {plane, raster::SplitTiles::zfail_only});
+      draw(everywhere, volume_groups_.weights_of(2 * p, 2 * p + 1), raster::CountRule::split,
+           bounds, {plane});
+      draw(caps, volume_groups_.weights_of(2 * p + 1, 2 * p + 2), raster::CountRule::split, bounds,
+           {plane, raster::SplitTiles::zfail_only});
     }
   }
   if (!total_work_.empty()) {  // bookkeeping, left out of the count passes' time
@@ -221,6 +245,29 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
     }
     stats.ms_counts -= ms_since(bookkeeping);
   }
+}
+
+VolumeCosts SoftBackend::measure_volume_costs() {
+  const TypicalVolumes& volumes = typical_volumes();
+  // Over an empty depth buffer every fragment passes z-pass: the volumes over open space.
+  auto best_of_runs = [&](int side, std::uint64_t& fill) {
+    raster::Target target(side, side);
+    double best = INFINITY;
+    for (int run = 0; run < 5; ++run) {
+      raster::Counters counters;
+      const auto start = Clock::now();
+      raster::draw_counts(target, volumes.triangles, volumes.weights, raster::CountRule::zpass,
+                          counters);
+      best = std::min(best, ms_since(start));
+      fill = counters.pixels_processed;
+      std::fill(target.count.begin(), target.count.end(), 0);
+    }
+    return best;
+  };
+  std::uint64_t small_fill = 0, large_fill = 0;
+  const double small = best_of_runs(kSmallSide, small_fill);
+  const double large = best_of_runs(kLargeSide, large_fill);
+  return volume_costs(small, large, volumes.vertices(), large_fill);
 }
 
 void SoftBackend::see_through() {

@@ -36,6 +36,7 @@ class SoftBackend final : public FrameBackend {
   Expected<void> supports(const RenderOptions&) const override { return {}; }
   bool counts_cpu_volumes() const override { return true; }
   bool counts_work() const override { return true; }
+  VolumeCosts measure_volume_costs() override;
 
   void begin_frame(const FrameInputs& inputs) override;
   void depth_pass(Layer layer) override;

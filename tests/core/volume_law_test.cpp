@@ -323,8 +323,13 @@ bool in_intervals(std::span<const DepthInterval> intervals, const glm::vec4& dep
 // away from the light: leaf 0 kept near itself, over a gap, and from further on to the far plane;
 // leaf 1 over one long interval from itself; leaf 2 culled (no intervals) or kept whole. False
 // where no such depth exists (a point light among the vertices).
+struct TestLeaves {
+  std::vector<std::uint32_t> face_leaf, vertex_offsets, vertex_leaves;
+};
+
 bool make_test_clamp(const Topology& topo, const glm::vec4& light, bool cull_leaf2,
-                     std::vector<std::uint32_t>& face_leaf, VolumeClamp& clamp) {
+                     TestLeaves& leaves, VolumeClamp& clamp) {
+  std::vector<std::uint32_t>& face_leaf = leaves.face_leaf;
   const glm::vec3 l(light);
   const glm::vec3 n = glm::round(-l / std::max({std::abs(l.x), std::abs(l.y), std::abs(l.z)}) *
                                  (light.w == 0.0f ? 16.0f : 4.0f));
@@ -342,6 +347,9 @@ bool make_test_clamp(const Topology& topo, const glm::vec4& light, bool cull_lea
   auto at = [&](int leaf, float steps) { return std::ceil(deepest[leaf] + steps * unit); };
   clamp.depth = glm::vec4(n, 0.0f);
   clamp.face_leaf = face_leaf;
+  build_vertex_leaves(topo, face_leaf, leaves.vertex_offsets, leaves.vertex_leaves);
+  clamp.vertex_leaf_offsets = leaves.vertex_offsets;
+  clamp.vertex_leaves = leaves.vertex_leaves;
   clamp.intervals = {
       {-INFINITY, at(0, 4)}, {at(0, 25), at(0, 50)}, {at(0, 80), INFINITY}, {-INFINITY, at(1, 60)}};
   clamp.offsets = {0, 3, 4, 4};
@@ -360,9 +368,10 @@ struct ClampedLawStats {
 void check_clamped_law(const testing::NamedMesh& named, const glm::vec4& light, Generator generator,
                        bool cull_leaf2, std::mt19937& rng, ClampedLawStats& stats) {
   const Topology topo = build_topology(named.mesh);
-  std::vector<std::uint32_t> face_leaf;
+  TestLeaves leaves;
   VolumeClamp clamp;
-  if (!make_test_clamp(topo, light, cull_leaf2, face_leaf, clamp)) return;
+  if (!make_test_clamp(topo, light, cull_leaf2, leaves, clamp)) return;
+  const std::vector<std::uint32_t>& face_leaf = leaves.face_leaf;
   VolumeBuffer volume;
   VolumeScratch scratch;
   build_volume(topo, light, {generator, true}, scratch, volume, &clamp);

@@ -230,9 +230,14 @@ TEST(Volume, ClampedLeavesDrawASharedEdgeOnlyWhereTheirIntervalsDiffer) {
   square.indices = {0, 1, 2, 0, 2, 3};  // facing +z, the light
   const Topology topo = build_topology(square);
   const std::vector<std::uint32_t> leaves{0, 1};
+  std::vector<std::uint32_t> vertex_offsets, vertex_leaves;
+  build_vertex_leaves(topo, leaves, vertex_offsets, vertex_leaves);
+  EXPECT_EQ(vertex_offsets, (std::vector<std::uint32_t>{0, 2, 3, 5, 6}));  // 0 and 2: both
   VolumeClamp clamp;
   clamp.depth = {0, 0, -1, 0};  // depth = -z: growing downwards, away from the light
   clamp.face_leaf = leaves;
+  clamp.vertex_leaf_offsets = vertex_offsets;
+  clamp.vertex_leaves = vertex_leaves;
   auto build_clamped = [&] {
     VolumeBuffer out;
     VolumeScratch scratch;
@@ -254,18 +259,26 @@ TEST(Volume, ClampedLeavesDrawASharedEdgeOnlyWhereTheirIntervalsDiffer) {
   clamp.intervals = {{-INFINITY, 1}, {-INFINITY, 4}};  // leaf 1 reaches on to 4
   clamp.offsets = {0, 1, 2};
   VolumeBuffer apart = build_clamped();
-  // 4 boundary edges once each, the diagonal once: from 1 to 4, leaf 1's term alone.
-  ASSERT_EQ(apart.sides.size(), 5u);
-  int diagonal = 0;
+  // Leaf 0's two boundary edges from the square to 1; leaf 1's two to 4, each cut at 1 on the ray
+  // of its vertex that leaf 0 shares (a quad and a triangle: no T-junction where leaf 0's pieces
+  // end); the diagonal once, from 1 to 4, leaf 1's term alone.
+  ASSERT_EQ(apart.sides.size(), 7u);
+  int diagonal = 0, triangles = 0;
   for (std::size_t q = 0; q < apart.sides.size(); ++q) {
     const glm::vec4* v = &apart.sides.vertices[4 * q];
-    if (v[0].w == 1.0f) continue;  // starts at the caster: a boundary edge
+    EXPECT_EQ(std::abs(apart.sides.weights[q]), 1);
+    triangles += v[0] == v[1] || v[2] == v[3];
+    for (int k = 0; k < 4; ++k) {  // every corner on a plane some leaf ends at, or the square
+      const float z = v[k].z / v[k].w;
+      EXPECT_TRUE(z == 0.0f || z == -1.0f || z == -4.0f) << q << " " << k << " " << z;
+    }
+    if (v[0].w == 1.0f || v[3].w == 1.0f) continue;  // starts at the caster: a boundary edge
     ++diagonal;
     EXPECT_FLOAT_EQ(v[0].z / v[0].w, -1.0f);
     EXPECT_FLOAT_EQ(v[1].z / v[1].w, -4.0f);
-    EXPECT_EQ(std::abs(apart.sides.weights[q]), 1);
   }
   EXPECT_EQ(diagonal, 1);
+  EXPECT_EQ(triangles, 2);
   // Leaf 0 culled: leaf 1's triangle alone, its three edges and caps.
   clamp.intervals = {{-INFINITY, 4}};
   clamp.offsets = {0, 0, 1};

@@ -442,9 +442,8 @@ TEST(Raster, TheSplitTestTakesTheMiddleOfTheTilesDepths) {
 }
 
 // CC shadow volumes' measures: `fill` touches every covered pixel whatever its depth and writes
-// nothing; the draw's own clip planes keep one side of a line through the eye, exactly where a
-// pixel's centre lies.
-TEST(Raster, FillCountsCoveredPixelsAndClipPlanesKeepTheirSide) {
+// nothing; a ScreenStrip keeps the pixels whose centres lie within it, whatever the direction.
+TEST(Raster, FillCountsCoveredPixelsAndAStripKeepsItsPixels) {
   const int w = 40, h = 30;
   Target target(w, h);
   target.clear_depth(1.0f);  // every stored depth nearest: z-pass would pass nowhere
@@ -458,29 +457,26 @@ TEST(Raster, FillCountsCoveredPixelsAndClipPlanesKeepTheirSide) {
   EXPECT_EQ(fill.pixels_passed, std::uint64_t(w * h));
   EXPECT_EQ(fill.count_updates, 0u);
   EXPECT_TRUE(std::all_of(target.count.begin(), target.count.end(), [](int c) { return c == 0; }));
-  // Keep x >= 0.25 w in clip space: the columns whose centres lie right of x_ndc = 0.25.
-  ClipPlanes right;
-  right.planes[0] = {1, 0, 0, -0.25f};
-  right.count = 1;
-  Counters clipped;
+  // A slanted strip, 0.1 <= 0.6 x + 0.8 y <= 0.5 in NDC.
+  const ScreenStrip strip{{0.6f, 0.8f}, 0.1f, 0.5f};
+  auto inside = [&](int px, int py) {
+    const glm::vec2 p = ndc_of_pixel(px, py, w, h);
+    const float s = 0.6f * p.x + 0.8f * p.y;
+    return s >= 0.1f && s <= 0.5f;
+  };
+  Counters counted;
   target.clear_depth(0.0f);
-  draw_counts(target, tris, weights, CountRule::zpass, clipped, {}, {}, right);
+  draw_counts(target, tris, weights, CountRule::zpass, counted, {}, {}, strip);
+  int pixels = 0;
   for (int py = 0; py < h; ++py)
-    for (int px = 0; px < w; ++px)
-      EXPECT_EQ(target.count[py * w + px], ndc_of_pixel(px, py, w, h).x > 0.25f ? 3 : 0)
-          << px << "," << py;
-  // A strip between two such planes, and fill within it.
-  ClipPlanes strip = right;
-  strip.planes[1] = {-1, 0, 0, 0.5f};  // x <= 0.5 w
-  strip.count = 2;
+    for (int px = 0; px < w; ++px) {
+      EXPECT_EQ(target.count[py * w + px], inside(px, py) ? 3 : 0) << px << "," << py;
+      pixels += inside(px, py);
+    }
+  EXPECT_GT(pixels, w * h / 8);
   Counters strip_fill;
   draw_counts(target, tris, weights, CountRule::fill, strip_fill, {}, {}, strip);
-  int columns = 0;
-  for (int px = 0; px < w; ++px) {
-    const float x = ndc_of_pixel(px, 0, w, h).x;
-    columns += x > 0.25f && x < 0.5f;
-  }
-  EXPECT_EQ(strip_fill.pixels_processed, std::uint64_t(columns * h));
+  EXPECT_EQ(strip_fill.pixels_processed, std::uint64_t(pixels));
 }
 
 }  // namespace

@@ -21,6 +21,10 @@ class RecordingBackend final : public FrameBackend {
   Expected<void> supports(const RenderOptions&) const override { return {}; }
   bool counts_cpu_volumes() const override { return true; }
   bool can_present() const override { return device_; }
+  VolumeCosts measure_volume_costs() override {
+    log("measure volume costs");
+    return {1e-6, 1e-6};
+  }
   void begin_frame(const FrameInputs&) override { log("begin_frame"); }
   void depth_pass(Layer layer) override { log("depth " + name(layer)); }
   void read_ids(Layer layer, SurfaceLayer& out) override {

@@ -132,7 +132,7 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"no_camera", R"({"lights": [], "objects": []})", "scene.camera: missing"},
         Bad{"unknown_key", R"({"camera": {"position": [0,2,5], "target": [0,0,0], "zoom": 2}})",
             "scene.camera.zoom: unknown key (expected one of: position, target, up, fov, near, "
-            "orbit)"},
+            "orbit, move)"},
         Bad{"short_vector", R"({"camera": {"position": [0, 2], "target": [0,0,0]}})",
             "scene.camera.position: expected 3 numbers [x, y, z], got array"},
         Bad{"up_along_view", R"({"camera": {"position": [0,2,5], "target": [0,50,5]}})",

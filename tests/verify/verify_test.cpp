@@ -13,12 +13,12 @@
 #include <glm/ext/matrix_transform.hpp>
 
 #include "backend/backend.h"
-#include "render/shading.h"
+#include "core/shapes.h"
 #include "render/light_map.h"
+#include "render/shading.h"
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
-#include "core/shapes.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
 
@@ -47,16 +47,16 @@ const Variant kGlAdditive{
     "gl_additive", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::additive}};
 const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlAdditive};
 // CC shadow volumes' culling (render/caster_culling.h) on both backends.
-const Variant kSoftOcclusion{"soft_cull_occlusion", Backend::soft, {}, SplitPlanes::sampled,
-                             SplitParts::each, Cull::occlusion};
-const Variant kSoftFrustum{"soft_cull_frustum", Backend::soft, {}, SplitPlanes::sampled,
-                           SplitParts::each, Cull::frustum};
-const Variant kGlCpuOcclusion{"gl_cpu_cull_occlusion", Backend::gl,
-                              {gl::VolumePath::cpu, gl::CountTarget::automatic},
-                              SplitPlanes::sampled, SplitParts::each, Cull::occlusion};
-const Variant kGlGpuOcclusion{"gl_gpu_cull_occlusion", Backend::gl,
-                              {gl::VolumePath::gpu, gl::CountTarget::automatic},
-                              SplitPlanes::sampled, SplitParts::each, Cull::occlusion};
+const Variant kSoftOcclusion{"soft_cull_occlusion", Backend::soft,    {},
+                             SplitPlanes::sampled,  SplitParts::each, Cull::occlusion};
+const Variant kSoftFrustum{"soft_cull_frustum",  Backend::soft,    {},
+                           SplitPlanes::sampled, SplitParts::each, Cull::frustum};
+const Variant kGlCpuOcclusion{
+    "gl_cpu_cull_occlusion", Backend::gl,      {gl::VolumePath::cpu, gl::CountTarget::automatic},
+    SplitPlanes::sampled,    SplitParts::each, Cull::occlusion};
+const Variant kGlGpuOcclusion{
+    "gl_gpu_cull_occlusion", Backend::gl,      {gl::VolumePath::gpu, gl::CountTarget::automatic},
+    SplitPlanes::sampled,    SplitParts::each, Cull::occlusion};
 void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 }  // namespace
 void PrintTo(Extrusion e, std::ostream* os) { *os << to_string(e); }
@@ -141,14 +141,13 @@ INSTANTIATE_TEST_SUITE_P(
     scene_method_name);
 
 // Culling (CC shadow volumes §3.1): every scene, by the methods of both backends and spsv.
-INSTANTIATE_TEST_SUITE_P(
-    Culled, BuiltinScenes,
-    ::testing::Combine(::testing::ValuesIn(kSceneNames),
-                       ::testing::Values(Method::zpass, Method::automatic),
-                       ::testing::Values(kSoftOcclusion, kSoftFrustum, kGlCpuOcclusion,
-                                         kGlGpuOcclusion),
-                       ::testing::Values(Extrusion::infinite)),
-    scene_method_name);
+INSTANTIATE_TEST_SUITE_P(Culled, BuiltinScenes,
+                         ::testing::Combine(::testing::ValuesIn(kSceneNames),
+                                            ::testing::Values(Method::zpass, Method::automatic),
+                                            ::testing::Values(kSoftOcclusion, kSoftFrustum,
+                                                              kGlCpuOcclusion, kGlGpuOcclusion),
+                                            ::testing::Values(Extrusion::infinite)),
+                         scene_method_name);
 INSTANTIATE_TEST_SUITE_P(
     CulledSoftOnly, BuiltinScenes,
     ::testing::Combine(::testing::ValuesIn(kSceneNames),
@@ -276,7 +275,8 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   ASSERT_FALSE(scene.ok());
   EXPECT_EQ(scene.error().message,
             "unknown scene 'dmeo': the built-in scenes are demo, camera-in-shadow, light-in-view, "
-            "directional, nonmanifold, glass, knight, knights16, robots, tree, tree-decomposed");
+            "directional, nonmanifold, glass, knight, knights16, robots, corridor, tree, "
+            "tree-decomposed");
 }
 
 TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
@@ -578,8 +578,10 @@ TEST(TransparentCasters, CompareCatchesWrongLight) {
 }
 
 // Parity: the two backends agree on what each pixel shows and whether it is lit, except within
-// one pixel of a boundary (of a shadow or of a surface) in the software frame. Any difference
-// at all is reported. Their pictures agree away from such boundaries.
+// one pixel of a boundary (of a shadow or of a surface) in either frame: a member thinner than a
+// pixel (the corridor's trusses at this size) may cover one rasterizer's pixel centre and not the
+// other's, with no boundary among the other frame's neighbours. Any difference at all is
+// reported. Their pictures agree away from such boundaries.
 TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
   for (std::string_view name : builtin_scene_names()) {
     auto scene = builtin_scene(name);
@@ -603,8 +605,9 @@ TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
                 const int qx = x + dx, qy = y + dy;
                 if (qx < 0 || qy < 0 || qx >= kWidth || qy >= kHeight) continue;
                 const std::size_t q = static_cast<std::size_t>(qy) * kWidth + qx;
-                band = band || soft.object[q] != soft.object[p] ||
-                       soft.shadowed[l][q] != soft.shadowed[l][p];
+                for (const Frame* f : {&soft, &gl})
+                  band = band || f->object[q] != f->object[p] ||
+                         f->shadowed[l][q] != f->shadowed[l][p];
               }
             outside_band += !band;
           }
@@ -624,12 +627,13 @@ TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
           for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
               const std::size_t q = static_cast<std::size_t>(y + dy) * kWidth + x + dx;
-              even = even && soft.object[q] == soft.object[p] &&
-                     (soft.glass.object.empty() || soft.glass.object[q] == soft.glass.object[p]);
-              for (std::size_t l = 0; l < soft.shadowed.size(); ++l)
-                even =
-                    even && soft.shadowed[l][q] == soft.shadowed[l][p] &&
-                    (soft.transmitted.empty() || soft.transmitted[l][q] == soft.transmitted[l][p]);
+              for (const Frame* f : {&soft, &gl}) {
+                even = even && f->object[q] == f->object[p] &&
+                       (f->glass.object.empty() || f->glass.object[q] == f->glass.object[p]);
+                for (std::size_t l = 0; l < f->shadowed.size(); ++l)
+                  even = even && f->shadowed[l][q] == f->shadowed[l][p] &&
+                         (f->transmitted.empty() || f->transmitted[l][q] == f->transmitted[l][p]);
+              }
             }
           if (!even) continue;
           for (int c = 0; c < 3; ++c)
