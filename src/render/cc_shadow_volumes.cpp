@@ -24,7 +24,8 @@ double ms_since(Clock::time_point start) {
 
 std::array<glm::dvec3, 8> corners(const glm::dvec3& lo, const glm::dvec3& hi) {
   std::array<glm::dvec3, 8> c;
-  for (int i = 0; i < 8; ++i) c[i] = {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
+  for (int i = 0; i < 8; ++i)
+    c[i] = {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
   return c;
 }
 
@@ -82,17 +83,18 @@ std::array<glm::dvec3, 3> CcShadowVolumes::face(const Scene& scene, std::size_t 
   return {p[v[0]], p[v[1]], p[v[2]]};
 }
 
-void CcShadowVolumes::split_objects(const Scene& scene, const FramePlan& plan,
-                                    bool sub_objects) {
+void CcShadowVolumes::split_objects(const Scene& scene, const FramePlan& plan, bool sub_objects) {
   const std::size_t objects = plan.objects.size();
   Box scene_box{glm::dvec3(INFINITY), glm::dvec3(-INFINITY)};
   for (const Box& b : boxes_)
-    if (!b.empty()) scene_box.lo = glm::min(scene_box.lo, b.lo), scene_box.hi = glm::max(scene_box.hi, b.hi);
+    if (!b.empty())
+      scene_box.lo = glm::min(scene_box.lo, b.lo), scene_box.hi = glm::max(scene_box.hi, b.hi);
   const glm::dvec3 extent = scene_box.hi - scene_box.lo;
   const double longest = scene_box.empty() ? 0.0 : std::max({extent.x, extent.y, extent.z});
   // A power of two, so that the cells (and the cached splits) hold still while the scene's
   // bounds move a little from frame to frame.
-  const double cell = longest > 0.0 ? std::exp2(std::floor(std::log2(longest / kCellsAcross))) : 0.0;
+  const double cell =
+      longest > 0.0 ? std::exp2(std::floor(std::log2(longest / kCellsAcross))) : 0.0;
   split_cache_.resize(objects);
   leaves_.resize(objects);
   leaf_caster_.clear();
@@ -106,16 +108,16 @@ void CcShadowVolumes::split_objects(const Scene& scene, const FramePlan& plan,
     leaves = {leaf_caster_.size(), 1, nullptr};
     if (sub_objects && cell > 0.0 && std::max({size.x, size.y, size.z}) > longest / kLargeAcross) {
       const glm::dmat4 model(plan.objects[o].model);
-      const double scale = std::max({glm::length(glm::dvec3(model[0])),
-                                     glm::length(glm::dvec3(model[1])),
-                                     glm::length(glm::dvec3(model[2]))});
+      const double scale =
+          std::max({glm::length(glm::dvec3(model[0])), glm::length(glm::dvec3(model[1])),
+                    glm::length(glm::dvec3(model[2]))});
       const Topology& topology = *scene.objects[o].topology;
       const auto object_cell = static_cast<float>(cell / scale);
       Cached& cached = split_cache_[o];
       if (!cached.split || cached.topology != &topology || cached.split->cell != object_cell) {
         cached.topology = &topology;
-        cached.split = std::make_unique<SubObjects>(
-            split_sub_objects(topology, object_cell, kMaxSubObjects));
+        cached.split =
+            std::make_unique<SubObjects>(split_sub_objects(topology, object_cell, kMaxSubObjects));
       }
       if (cached.split->leaves.size() > 1) {
         leaves.count = cached.split->leaves.size();
@@ -196,8 +198,8 @@ void CcShadowVolumes::find_receivers(const Scene& scene, const RenderOptions& op
 }
 
 void CcShadowVolumes::apply(const Scene& scene, const RenderOptions& options, FramePlan& plan,
-                            const SurfaceLayer* opaque, const VolumeCosts& costs,
-                            bool sub_objects, FrameStats& stats) {
+                            const SurfaceLayer* opaque, const VolumeCosts& costs, bool sub_objects,
+                            FrameStats& stats) {
   if (options.cull == Cull::none && options.clamp == Clamp::none) return;
   const auto start = Clock::now();
   const std::size_t objects = plan.objects.size();
@@ -241,8 +243,10 @@ void CcShadowVolumes::apply(const Scene& scene, const RenderOptions& options, Fr
     if (clamps_continuous(options.clamp)) clamp_continuously(options, plan, l, costs, stats);
     write_plan(options, plan, l, stats);
     if (clamps_discrete(options.clamp)) clamp_discretely(options, plan, l, stats);
-    if (options.clamp != Clamp::none) stats.ms_clamp += ms_since(clamp_start);
-    else stats.ms_cull += ms_since(clamp_start);
+    if (options.clamp != Clamp::none)
+      stats.ms_clamp += ms_since(clamp_start);
+    else
+      stats.ms_cull += ms_since(clamp_start);
   }
 }
 
@@ -287,8 +291,10 @@ void CcShadowVolumes::cull_light(const Scene& scene, const RenderOptions& option
           const glm::dvec4 c = view_proj * glm::dvec4(p, 1.0);
           const double s = c.w > 0.0 ? (slices.across.x * c.x + slices.across.y * c.y) / c.w
                                      : (c.w == 0.0 ? 0.0 : NAN);
-          if (!(c.w > 0.0)) lo = -INFINITY, hi = INFINITY;
-          else lo = std::min(lo, s), hi = std::max(hi, s);
+          if (!(c.w > 0.0))
+            lo = -INFINITY, hi = INFINITY;
+          else
+            lo = std::min(lo, s), hi = std::max(hi, s);
         }
         strips = slices.of(std::max(lo, -1e9), std::min(hi, 1e9));
       }
@@ -355,10 +361,14 @@ void CcShadowVolumes::clamp_continuously(const RenderOptions& options, const Fra
       ContinuousClamping::Item& item = items_[k];
       item.casts = leaf_kept_[k] && object_view_[o] == view &&
                    views_.light_box(view, leaf_caster_[k], true, item.caster);
-      item.receives = receiver_[o] && views_.light_box(view, leaf_receiver_[k], false, item.receiver);
+      item.receives =
+          receiver_[o] && views_.light_box(view, leaf_receiver_[k], false, item.receiver);
       item.interval_vertices = interval_vertices(leaf_faces_[k]);
-      if (item.casts) nearest = std::min(nearest, item.caster.z0), farthest = std::max(farthest, item.caster.z1);
-      if (item.receives) nearest = std::min(nearest, item.receiver.z0), farthest = std::max(farthest, item.receiver.z1);
+      if (item.casts)
+        nearest = std::min(nearest, item.caster.z0), farthest = std::max(farthest, item.caster.z1);
+      if (item.receives)
+        nearest = std::min(nearest, item.receiver.z0),
+        farthest = std::max(farthest, item.receiver.z1);
     }
     if (!(nearest <= farthest)) continue;
     const double margin = kDepthMargin * std::max(farthest - nearest, 1e-30);
@@ -369,8 +379,8 @@ void CcShadowVolumes::clamp_continuously(const RenderOptions& options, const Fra
       double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
       bool behind = false;
       for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 p = views_.point(view, i & 1 ? b.u1 : b.u0, i & 2 ? b.v1 : b.v0,
-                                          i & 4 ? to : from);
+        const glm::dvec3 p =
+            views_.point(view, i & 1 ? b.u1 : b.u0, i & 2 ? b.v1 : b.v0, i & 4 ? to : from);
         const glm::dvec4 c = view_proj * glm::dvec4(p, 1.0);
         if (!(c.w > 0.0)) behind = true;
         x0 = std::min(x0, c.x / c.w), x1 = std::max(x1, c.x / c.w);
@@ -442,11 +452,11 @@ void CcShadowVolumes::write_plan(const RenderOptions& options, FramePlan& plan, 
   }
 }
 
-void CcShadowVolumes::clamp_discretely(const RenderOptions& options, FramePlan& plan,
-                                       std::size_t l, FrameStats& stats) {
+void CcShadowVolumes::clamp_discretely(const RenderOptions& options, FramePlan& plan, std::size_t l,
+                                       FrameStats& stats) {
   const int count = options.slices;
-  const Slices slices = make_slices(plan.view_proj, plan.lights[l], options.width, options.height,
-                                    count);
+  const Slices slices =
+      make_slices(plan.view_proj, plan.lights[l], options.width, options.height, count);
   for (std::size_t o = 0; o < plan.objects.size(); ++o) {
     VolumePlan& v = plan.volume(l, o);
     if (v.culled) continue;
