@@ -96,23 +96,6 @@ struct Oracle {
   }
 };
 
-template <class T>
-T total(const std::vector<T>& v) {
-  T sum{};
-  for (const T& x : v) sum += x;
-  return sum;
-}
-
-bool write_text(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text;
-    return true;
-  }
-  std::ofstream out(path);
-  out << text;
-  return static_cast<bool>(out.flush());
-}
-
 }  // namespace
 
 int run_spsv_suite(const SuiteOptions& options) {

@@ -1,16 +1,46 @@
-// shadowvol app: `bench --suite spsv`, Laine 2005's measurement (Table 1) on our scenes.
+// shadowvol app: the measurement suites of `bench --suite`.
 //
-// Every scene of the suite (knight, knights16, tree, tree-decomposed) with each method (zp+db,
-// zf+db, spsv) over frames 0 .. N-1 of its animation, in the software rasterizer: per frame,
-// the tiles processed (touched by a volume primitive), the tiles not culled, the pixels
-// processed and the pixels updated (count changes), and the count passes' time.
+// spsv: Laine 2005's measurement (Table 1) on our scenes. Every scene of the suite (knight,
+// knights16, tree, tree-decomposed) with each method (zp+db, zf+db, spsv) over frames 0 .. N-1
+// of its animation, in the software rasterizer: per frame, the tiles processed (touched by a
+// volume primitive), the tiles not culled, the pixels processed and the pixels updated (count
+// changes), and the count passes' time.
+//
+// cc: CC shadow volumes' measurement (Lloyd et al. 2004 §4, Fig. 7 to 9). The corridor and the
+// robots over their paths with standard volumes (sv), culling only (cull), and culling with
+// continuous (ccc), discrete (ccd) and both clampings (cc): per frame the fill (pixels the
+// volumes touch with the depth test off), the stencil writes and the shadow-volume time
+// (building and counting the volumes), with culling's and clamping's own times beside; then the
+// slice sweep of discrete clamping on the corridor (Fig. 9).
 #pragma once
 
+#include <fstream>
+#include <iostream>
 #include <string>
+#include <vector>
 
+#include "backend/backend.h"
 #include "render/renderer.h"
 
 namespace shadowvol {
+
+// Writes text to a file, or to standard output for "-"; false when it cannot.
+inline bool write_text(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::cout << text;
+    return true;
+  }
+  std::ofstream out(path);
+  out << text;
+  return static_cast<bool>(out.flush());
+}
+
+template <class T>
+T total(const std::vector<T>& v) {
+  T sum{};
+  for (const T& x : v) sum += x;
+  return sum;
+}
 
 struct SuiteOptions {
   int frames = 10;
@@ -25,5 +55,18 @@ struct SuiteOptions {
 // Runs the suite, prints a table of totals and ratios against the goals, writes the files.
 // Returns the process's exit status.
 int run_spsv_suite(const SuiteOptions& options);
+
+struct CcSuiteOptions {
+  int frames = 48;                  // the corridor's walk end to end
+  int width = 1280, height = 1024;  // the paper's resolution
+  Method method = Method::automatic;
+  Backend backend = Backend::soft;
+  gl::GlSettings gl;
+  std::string json, csv, plot;  // as SuiteOptions's
+};
+
+// Runs `bench --suite cc`: prints the table of totals, the ratios against the goals and the slice
+// sweep, writes the files. Returns the process's exit status.
+int run_cc_suite(const CcSuiteOptions& options);
 
 }  // namespace shadowvol

@@ -109,11 +109,41 @@ int bench(const BenchArgs& args) {
   return 0;
 }
 
+// `bench --suite cc`: the size, method, frames and backend as given, else the suite's own.
+int cc_suite(const BenchArgs& args) {
+  CcSuiteOptions suite;
+  suite.json = args.json_file;
+  suite.csv = args.csv;
+  suite.plot = args.plot;
+  if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
+  if (args.given("--frames")) suite.frames = args.frames;
+  if (args.given("--size")) {
+    auto size = parse_size(args.frame.size);
+    if (!size) return fail(size.error().message);
+    suite.width = size->first, suite.height = size->second;
+  }
+  if (auto ok = check_options({suite.width, suite.height}); !ok)
+    return fail("--size: " + ok.error().message);
+  auto method = parse_method(args.frame.method);
+  if (!method) return fail("--method: " + method.error().message);
+  suite.method = *method;
+  auto backend = parse_backend(args.frame.backend);
+  if (!backend) return fail("--backend: " + backend.error().message);
+  suite.backend = *backend;
+  auto volumes = gl::parse_volume_path(args.frame.volumes);
+  if (!volumes) return fail("--volumes: " + volumes.error().message);
+  auto counts = gl::parse_count_target(args.frame.counts);
+  if (!counts) return fail("--counts: " + counts.error().message);
+  suite.gl = {*volumes, *counts};
+  return run_cc_suite(suite);
+}
+
 int suite(const BenchArgs& args) {
   if (args.suite.empty())
-    return fail(std::string(args.csv.empty() ? "--plot" : "--csv") + " needs --suite spsv");
+    return fail(std::string(args.csv.empty() ? "--plot" : "--csv") + " needs --suite spsv or cc");
+  if (args.suite == "cc") return cc_suite(args);
   if (args.suite != "spsv")
-    return fail("--suite: unknown suite '" + args.suite + "': expected spsv");
+    return fail("--suite: unknown suite '" + args.suite + "': expected spsv or cc");
   SuiteOptions suite{args.frames, 1024, 768, args.json_file, args.csv, args.plot};
   if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
   if (args.given("--size")) {
@@ -159,7 +189,10 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--suite", args->suite,
                   "Run a measurement suite instead: spsv (Laine 2005's counters over the animated "
                   "knight, knights16, tree and tree-decomposed, with zp+db, zf+db, spsv, "
-                  "spsv-laine and spsv-whole; 1024x768 unless --size)");
+                  "spsv-laine and spsv-whole; 1024x768 unless --size) or cc (CC shadow volumes' "
+                  "fill, stencil writes and shadow-volume time over the corridor's and the "
+                  "robots' paths, with sv, cull, ccc, ccd and cc, and the slice sweep; "
+                  "1280x1024 and 48 frames unless --size and --frames; --method, --backend)");
   cmd->add_option("--csv", args->csv,
                   "With --suite: write one row per scene, method and frame to this file");
   cmd->add_option("--plot", args->plot,

@@ -36,6 +36,7 @@ struct Variant {
   SplitPlanes split_planes = SplitPlanes::sampled;  // for Method::split_plane
   SplitParts split_parts = SplitParts::each;        // likewise
   Cull cull = Cull::none;
+  Clamp clamp = Clamp::none;
 };
 const Variant kSoft{"soft", Backend::soft, {}};
 const Variant kSoftLaine{"soft_laine_planes", Backend::soft, {}, SplitPlanes::laine};
@@ -46,7 +47,7 @@ const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarge
 const Variant kGlAdditive{
     "gl_additive", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::additive}};
 const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlAdditive};
-// CC shadow volumes' culling (render/caster_culling.h) on both backends.
+// CC shadow volumes' culling and clamping (render/cc_shadow_volumes.h) on both backends.
 const Variant kSoftOcclusion{"soft_cull_occlusion", Backend::soft,    {},
                              SplitPlanes::sampled,  SplitParts::each, Cull::occlusion};
 const Variant kSoftFrustum{"soft_cull_frustum",  Backend::soft,    {},
@@ -57,6 +58,33 @@ const Variant kGlCpuOcclusion{
 const Variant kGlGpuOcclusion{
     "gl_gpu_cull_occlusion", Backend::gl,      {gl::VolumePath::gpu, gl::CountTarget::automatic},
     SplitPlanes::sampled,    SplitParts::each, Cull::occlusion};
+const Variant kSoftContinuous{"soft_clamp_continuous", Backend::soft,    {},
+                              SplitPlanes::sampled,    SplitParts::each, Cull::none,
+                              Clamp::continuous};
+const Variant kSoftDiscrete{"soft_clamp_discrete", Backend::soft,    {},
+                            SplitPlanes::sampled,  SplitParts::each, Cull::none,
+                            Clamp::discrete};
+const Variant kSoftBothOcclusion{"soft_cull_occlusion_clamp_both",
+                                 Backend::soft,
+                                 {},
+                                 SplitPlanes::sampled,
+                                 SplitParts::each,
+                                 Cull::occlusion,
+                                 Clamp::both};
+const Variant kGlCpuBoth{"gl_cpu_cull_frustum_clamp_both",
+                         Backend::gl,
+                         {gl::VolumePath::cpu, gl::CountTarget::automatic},
+                         SplitPlanes::sampled,
+                         SplitParts::each,
+                         Cull::frustum,
+                         Clamp::both};
+const Variant kGlGpuDiscrete{"gl_gpu_cull_occlusion_clamp_discrete",
+                             Backend::gl,
+                             {gl::VolumePath::gpu, gl::CountTarget::automatic},
+                             SplitPlanes::sampled,
+                             SplitParts::each,
+                             Cull::occlusion,
+                             Clamp::discrete};
 void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 }  // namespace
 void PrintTo(Extrusion e, std::ostream* os) { *os << to_string(e); }
@@ -76,6 +104,7 @@ Comparison verify(const Scene& scene, Method method, Generator generator = Gener
   options.split_planes = variant.split_planes;
   options.split_parts = variant.split_parts;
   options.cull = variant.cull;
+  options.clamp = variant.clamp;
   const Frame frame = render(variant, scene, options);
   if (frame.object.empty()) return {};
   auto reference = trace_reference(scene, kWidth, kHeight);
@@ -141,6 +170,21 @@ INSTANTIATE_TEST_SUITE_P(
     scene_method_name);
 
 // Culling (CC shadow volumes §3.1): every scene, by the methods of both backends and spsv.
+INSTANTIATE_TEST_SUITE_P(Clamped, BuiltinScenes,
+                         ::testing::Combine(::testing::ValuesIn(kSceneNames),
+                                            ::testing::Values(Method::zfail, Method::automatic),
+                                            ::testing::Values(kSoftContinuous, kSoftDiscrete,
+                                                              kSoftBothOcclusion, kGlCpuBoth,
+                                                              kGlGpuDiscrete),
+                                            ::testing::Values(Extrusion::infinite)),
+                         scene_method_name);
+INSTANTIATE_TEST_SUITE_P(ClampedSoftOnly, BuiltinScenes,
+                         ::testing::Combine(::testing::ValuesIn(kSceneNames),
+                                            ::testing::Values(Method::split_plane,
+                                                              Method::zpass_prefill),
+                                            ::testing::Values(kSoftBothOcclusion),
+                                            ::testing::Values(Extrusion::infinite)),
+                         scene_method_name);
 INSTANTIATE_TEST_SUITE_P(Culled, BuiltinScenes,
                          ::testing::Combine(::testing::ValuesIn(kSceneNames),
                                             ::testing::Values(Method::zpass, Method::automatic),
