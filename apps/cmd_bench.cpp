@@ -81,7 +81,7 @@ int bench(const BenchArgs& args) {
                 {"shade_ms", sum.ms_shade / n},
                 {"readback_ms", sum.ms_readback / n},
                 {"volume_primitives", sum.volume_primitives / args.frames}});
-    row.update(culling_json(sum, args.frames));
+    row.update(cc_json(sum, args.frames, false));  // fill: bench --suite cc
     if (glass) {
       row["all_opaque_frame_ms"] = t[1].frame_ms;
       row["transparent_over_opaque"] = t[0].frame_ms / t[1].frame_ms;

@@ -5,8 +5,11 @@
 #include <memory>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cli.h"
 #include "image_file.h"
+#include "render/frame_json.h"
 #include "render/heatmap.h"
 #include "render/light_map.h"
 
@@ -17,6 +20,7 @@ struct RenderArgs {
   FrameArgs frame{"demo", "auto", "auto", "960x540"};
   std::string out = "shadowvol.png";
   bool stats = false;
+  bool json = false;
   bool show_volumes = false;
   int frames = 1;
   std::string heatmap;    // PNG of the count passes' work per tile; soft backend
@@ -77,7 +81,7 @@ int run(const RenderArgs& args) {
   RenderOptions options = resolved->options;
   options.show_volumes = args.show_volumes;
   options.tile_work = !args.heatmap.empty();
-  options.count_fill = args.stats;
+  options.count_fill = args.stats || args.json;
   auto renderer = make_frame_renderer(*resolved, options);
   if (!renderer) return fail(renderer.error().message);
 
@@ -90,24 +94,43 @@ int run(const RenderArgs& args) {
   }
   status.clear();
   if (auto ok = write_png(args.out, frame.image); !ok) return fail(ok.error().message);
-  std::cout << "wrote " << args.out << " (" << scene.name << ", " << frame.image.width << "x"
-            << frame.image.height << ", " << method_label(options) << ", "
-            << (*renderer)->backend().name() << ")\n";
+  (args.json ? std::cerr : std::cout)
+      << "wrote " << args.out << " (" << scene.name << ", " << frame.image.width << "x"
+      << frame.image.height << ", " << method_label(options) << ", "
+      << (*renderer)->backend().name() << ")\n";
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
     if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
-    std::printf(
-        "wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
-        "per pixel)\n",
-        args.heatmap.c_str(), map.passes_at_top);
+    std::fprintf(args.json ? stderr : stdout,
+                 "wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
+                 "per pixel)\n",
+                 args.heatmap.c_str(), map.passes_at_top);
   }
   if (!args.light_map.empty()) {
     const Image map = light_map_image(scene_at_frame(scene, args.frames - 1), frame);
     if (auto ok = write_png(args.light_map, map); !ok) return fail(ok.error().message);
-    std::printf("wrote %s (the light that reaches each surface, all lights at full = white)\n",
-                args.light_map.c_str());
+    std::fprintf(args.json ? stderr : stdout,
+                 "wrote %s (the light that reaches each surface, all lights at full = white)\n",
+                 args.light_map.c_str());
   }
-  if (args.stats) print_stats(frame.stats, (*renderer)->backend().counts_work());
+  if (args.stats && !args.json) print_stats(frame.stats, (*renderer)->backend().counts_work());
+  if (args.json) {  // the last frame's figures, for scripts
+    const FrameStats& s = frame.stats;
+    nlohmann::json out = to_json(options);
+    out.update({{"scene", scene.name},
+                {"backend", std::string((*renderer)->backend().name())},
+                {"frames", args.frames},
+                {"depth_ms", s.ms_depth},
+                {"volumes_ms", s.ms_volumes},
+                {"counts_ms", s.ms_counts},
+                {"shade_ms", s.ms_shade},
+                {"readback_ms", s.ms_readback},
+                {"triangles", s.triangles},
+                {"volume_primitives", s.volume_primitives}});
+    out.update(cc_json(s));
+    if ((*renderer)->backend().counts_work()) out["count_pass"] = to_json(s.counts);
+    std::cout << out.dump(2) << "\n";
+  }
   return 0;
 }
 
@@ -119,6 +142,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
   add_frame_options(cmd, args->frame);
   cmd->add_option("--out", args->out, "PNG file to write")->capture_default_str();
   cmd->add_flag("--stats", args->stats, "Print the frame's timings and counters");
+  cmd->add_flag("--json", args->json,
+                "Print the last frame's timings and counters as one JSON object (CC shadow "
+                "volumes' among them: casters culled, volume segments, queries, fill)");
   cmd->add_flag("--show-volumes", args->show_volumes,
                 "Draw the shadow volumes' edges over the image (one colour per light)");
   cmd->add_option("--heatmap", args->heatmap,

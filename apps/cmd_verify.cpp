@@ -25,7 +25,8 @@ struct VerifyArgs {
 int run(const VerifyArgs& args) {
   auto resolved = resolve(args.frame);
   if (!resolved) return fail(resolved.error().message);
-  const RenderOptions& options = resolved->options;
+  RenderOptions options = resolved->options;
+  options.count_fill = args.json;  // the JSON carries the volumes' fill
   if (args.frame_number < 0)
     return fail("--frame: " + std::to_string(args.frame_number) + " is not a frame number");
   const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
@@ -55,7 +56,7 @@ int run(const VerifyArgs& args) {
                 {"transparent_casters", glass},
                 {"max_light_error", c.max_light_error},
                 {"max_light_error_outside_band", c.max_light_error_outside_band}});
-    out.update(culling_json(frame.stats));
+    out.update(cc_json(frame.stats));
     std::cout << out.dump(2) << "\n";
   } else {
     char light[160] = "";

@@ -224,8 +224,11 @@ void CcShadowVolumes::apply(const Scene& scene, const RenderOptions& options, Fr
   for (std::size_t o = 0; o < objects; ++o)
     if (receiver_[o]) receiver_boxes_.push_back(boxes_[o]);
   clampers_.resize(plan.lights.size());
-  // The shared work (views, their depths) is the culling's where culling runs.
-  double& shared_ms = options.cull != Cull::none ? stats.ms_cull : stats.ms_clamp;
+  // The light views and their depths are the culling's where culling by occlusion draws them,
+  // or culling by the frustum needs the views alone; else discrete clamping's, which needs them.
+  const bool culling_owns = options.cull == Cull::occlusion ||
+                            (options.cull == Cull::frustum && !clamps_discrete(options.clamp));
+  double& shared_ms = culling_owns ? stats.ms_cull : stats.ms_clamp;
   shared_ms += ms_since(start);
   for (std::size_t l = 0; l < plan.lights.size(); ++l) {
     const auto light_start = Clock::now();

@@ -99,7 +99,7 @@ inline bool clamps_continuous(Clamp c) { return c == Clamp::continuous || c == C
 inline bool clamps_discrete(Clamp c) { return c == Clamp::discrete || c == Clamp::both; }
 // Discrete clamping's slices: the default from the sweep of `bench --suite cc` (docs/
 // cc-shadow-volumes.md), and the most a light's view keeps layers for.
-inline constexpr int kDefaultSlices = 8, kMaxSlices = 64;
+inline constexpr int kDefaultSlices = 4, kMaxSlices = 64;
 Expected<void> check_slices(int slices);
 
 struct RenderOptions {
@@ -162,7 +162,8 @@ struct FrameStats {
   double ms_cull = 0;
   // Sub-objects (CC §3, §3.3), over all lights: culled apart from the rest of their object.
   int sub_objects_culled = 0;
-  // Clamping (RenderOptions::clamp), over all lights: the time it took; volumes whose segments
+  // Clamping (RenderOptions::clamp), over all lights: the time it took (the light views' depths
+  // too, where discrete clamping alone draws them); volumes whose segments
   // were clamped continuously; volumes no strip holds (not drawn); the segments drawn (a
   // volume's intervals over its sub-objects, times its strips; 1 for a volume drawn whole); the
   // discrete tests (a box in a strip, per light view); and the continuous overlap tests' pairs,

@@ -13,15 +13,36 @@ nlohmann::json to_json(const RenderOptions& options) {
           {"split_planes", std::string(to_string(options.split_planes))},
           {"split_parts", std::string(to_string(options.split_parts))},
           {"cull", std::string(to_string(options.cull))},
+          {"clamp", std::string(to_string(options.clamp))},
+          {"slices", options.slices},
           {"light_view_size", options.light_view_size}};
 }
 
-nlohmann::json culling_json(const FrameStats& s, int per) {
-  return {{"casters_culled_in_shadow", static_cast<double>(s.casters_culled_in_shadow) / per},
-          {"casters_culled_unseen", static_cast<double>(s.casters_culled_unseen) / per},
-          {"queries", static_cast<double>(s.cull_queries) / per},
-          {"light_views", static_cast<double>(s.light_views) / per},
-          {"cull_ms", s.ms_cull / per}};
+nlohmann::json cc_json(const FrameStats& s, int per, bool fill) {
+  auto each = [per](double total) { return total / per; };
+  nlohmann::json out{
+      {"casters_culled_in_shadow", each(s.casters_culled_in_shadow)},
+      {"casters_culled_unseen", each(s.casters_culled_unseen)},
+      {"sub_objects_culled", each(s.sub_objects_culled)},
+      {"queries", each(static_cast<double>(s.cull_queries + s.slice_queries))},
+      {"light_views", each(s.light_views)},
+      {"cull_ms", each(s.ms_cull)},
+      {"volumes_clamped", each(s.volumes_clamped)},
+      {"volumes_clamped_away", each(s.volumes_clamped_away)},
+      {"volume_segments", each(static_cast<double>(s.volume_segments))},
+      {"clamp_pairs", each(static_cast<double>(s.clamp_pairs))},
+      {"clamp_swaps", each(static_cast<double>(s.clamp_swaps))},
+      {"intervals_merged_by_cost", each(static_cast<double>(s.intervals_merged_by_cost))},
+      {"clamp_ms", each(s.ms_clamp)}};
+  if (fill) {
+    out["fill"] = each(static_cast<double>(s.fill));
+    out["stencil_writes"] = each(static_cast<double>(s.stencil_writes));
+  }
+  if (s.volume_costs.measured()) {
+    out["v_ms_per_vertex"] = s.volume_costs.ms_per_vertex;
+    out["r_ms_per_pixel"] = s.volume_costs.ms_per_pixel;
+  }
+  return out;
 }
 
 nlohmann::json to_json(const raster::Counters& c, std::uint64_t per) {

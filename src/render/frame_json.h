@@ -10,14 +10,18 @@
 
 namespace shadowvol {
 
-// width, height, method, generator, extrusion, split_planes, split_parts, cull and
-// light_view_size, by name.
+// width, height, method, generator, extrusion, split_planes, split_parts, cull, clamp, slices
+// and light_view_size, by name.
 nlohmann::json to_json(const RenderOptions& options);
 // The rasterizer's work: triangles, tiles_touched, tiles_skipped, pixels_processed and
 // count_updates, each divided by `per` (the frames they were added over).
 nlohmann::json to_json(const raster::Counters& counters, std::uint64_t per = 1);
-// CC culling's figures (FrameStats): casters_culled_in_shadow, casters_culled_unseen, queries,
-// light_views and cull_ms, each divided by `per`.
-nlohmann::json culling_json(const FrameStats& stats, int per = 1);
+// CC shadow volumes' figures (FrameStats), each divided by `per`: casters_culled_in_shadow,
+// casters_culled_unseen, sub_objects_culled, queries (the culling's and the slices'), light_views,
+// cull_ms; volumes_clamped, volumes_clamped_away, volume_segments, clamp_pairs, clamp_swaps,
+// intervals_merged_by_cost, clamp_ms; with `fill`, fill and stencil_writes (which
+// RenderOptions::count_fill must have asked for); v_ms_per_vertex and r_ms_per_pixel where the
+// backend measured them.
+nlohmann::json cc_json(const FrameStats& stats, int per = 1, bool fill = true);
 
 }  // namespace shadowvol
