@@ -9,7 +9,6 @@
 
 #include "bench_suite.h"
 #include "cli.h"
-#include "image_file.h"
 #include "plot.h"
 #include "render/frame_json.h"
 #include "scene/scene.h"
@@ -242,23 +241,10 @@ int run_cc_suite(const CcSuiteOptions& options) {
   chart.panels.push_back(std::move(sweep_panel));
   json["slice_sweep"] = sweep;
 
-  if (!options.json.empty() && !write_text(options.json, json.dump(2) + "\n")) {
-    std::cerr << "shadowvol: error: " << options.json << ": cannot write the JSON\n";
-    return 1;
-  }
-  if (!options.csv.empty() && !write_text(options.csv, csv)) {
-    std::cerr << "shadowvol: error: " << options.csv << ": cannot write the CSV\n";
-    return 1;
-  }
-  if (!options.plot.empty()) {
-    if (auto ok = write_png(options.plot, draw_chart(chart)); !ok) {
-      std::cerr << "shadowvol: error: " << ok.error().message << "\n";
-      return 1;
-    }
-    std::fprintf(table, "wrote %s (the counters per frame, and the slice sweep)\n",
-                 options.plot.c_str());
-  }
-  return 0;
+  return write_suite_outputs(options.json, json.dump(2) + "\n", options.csv, csv, options.plot,
+                             chart, "the counters per frame, and the slice sweep", table)
+             ? 0
+             : 1;
 }
 
 }  // namespace shadowvol

@@ -240,22 +240,32 @@ int run_spsv_suite(const SuiteOptions& options) {
                "goal (every baseline >= %.2fx pixels processed and >= %.2fx updated on every "
                "scene): %s\n",
                kGoalProcessed, kGoalUpdated, all_met ? "met" : "not met");
-  if (!options.json.empty() && !write_text(options.json, json.dump(2) + "\n")) {
-    std::cerr << "shadowvol: error: " << options.json << ": cannot write the JSON\n";
-    return 1;
+  return write_suite_outputs(options.json, json.dump(2) + "\n", options.csv, csv, options.plot,
+                             chart, "the counters per frame", table)
+             ? 0
+             : 1;
+}
+
+bool write_suite_outputs(const std::string& json_path, const std::string& json,
+                         const std::string& csv_path, const std::string& csv,
+                         const std::string& plot_path, const Chart& chart, const char* what,
+                         std::FILE* table) {
+  if (!json_path.empty() && !write_text(json_path, json)) {
+    std::cerr << "shadowvol: error: " << json_path << ": cannot write the JSON\n";
+    return false;
   }
-  if (!options.csv.empty() && !write_text(options.csv, csv)) {
-    std::cerr << "shadowvol: error: " << options.csv << ": cannot write the CSV\n";
-    return 1;
+  if (!csv_path.empty() && !write_text(csv_path, csv)) {
+    std::cerr << "shadowvol: error: " << csv_path << ": cannot write the CSV\n";
+    return false;
   }
-  if (!options.plot.empty()) {
-    if (auto ok = write_png(options.plot, draw_chart(chart)); !ok) {
+  if (!plot_path.empty()) {
+    if (auto ok = write_png(plot_path, draw_chart(chart)); !ok) {
       std::cerr << "shadowvol: error: " << ok.error().message << "\n";
-      return 1;
+      return false;
     }
-    std::fprintf(table, "wrote %s (the counters per frame)\n", options.plot.c_str());
+    std::fprintf(table, "wrote %s (%s)\n", plot_path.c_str(), what);
   }
-  return 0;
+  return true;
 }
 
 }  // namespace shadowvol

@@ -14,12 +14,14 @@
 // slice sweep of discrete clamping on the corridor (Fig. 9).
 #pragma once
 
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "backend/backend.h"
+#include "plot.h"
 #include "render/renderer.h"
 
 namespace shadowvol {
@@ -34,6 +36,13 @@ inline bool write_text(const std::string& path, const std::string& text) {
   out << text;
   return static_cast<bool>(out.flush());
 }
+
+// Writes a suite's JSON, CSV and plot (`what` it shows, said on `table`) where their paths are
+// not empty; false, with the error on stderr, when one cannot be written.
+bool write_suite_outputs(const std::string& json_path, const std::string& json,
+                         const std::string& csv_path, const std::string& csv,
+                         const std::string& plot_path, const Chart& chart, const char* what,
+                         std::FILE* table);
 
 template <class T>
 T total(const std::vector<T>& v) {

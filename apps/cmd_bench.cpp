@@ -109,6 +109,18 @@ int bench(const BenchArgs& args) {
   return 0;
 }
 
+// A suite's image size: --size where given, else the suite's own.
+Expected<void> suite_size(const BenchArgs& args, int& width, int& height) {
+  if (args.given("--size")) {
+    auto size = parse_size(args.frame.size);
+    if (!size) return size.error();
+    width = size->first, height = size->second;
+  }
+  if (auto ok = check_options({width, height}); !ok)
+    return make_error("--size: " + ok.error().message);
+  return {};
+}
+
 // `bench --suite cc`: the size, method, frames and backend as given, else the suite's own.
 int cc_suite(const BenchArgs& args) {
   CcSuiteOptions suite;
@@ -117,13 +129,7 @@ int cc_suite(const BenchArgs& args) {
   suite.plot = args.plot;
   if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
   if (args.given("--frames")) suite.frames = args.frames;
-  if (args.given("--size")) {
-    auto size = parse_size(args.frame.size);
-    if (!size) return fail(size.error().message);
-    suite.width = size->first, suite.height = size->second;
-  }
-  if (auto ok = check_options({suite.width, suite.height}); !ok)
-    return fail("--size: " + ok.error().message);
+  if (auto ok = suite_size(args, suite.width, suite.height); !ok) return fail(ok.error().message);
   auto method = parse_method(args.frame.method);
   if (!method) return fail("--method: " + method.error().message);
   suite.method = *method;
@@ -146,13 +152,7 @@ int suite(const BenchArgs& args) {
     return fail("--suite: unknown suite '" + args.suite + "': expected spsv or cc");
   SuiteOptions suite{args.frames, 1024, 768, args.json_file, args.csv, args.plot};
   if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
-  if (args.given("--size")) {
-    auto size = parse_size(args.frame.size);
-    if (!size) return fail(size.error().message);
-    suite.width = size->first, suite.height = size->second;
-    if (auto ok = check_options({suite.width, suite.height}); !ok)
-      return fail("--size: " + ok.error().message);
-  }
+  if (auto ok = suite_size(args, suite.width, suite.height); !ok) return fail(ok.error().message);
   if (args.given("--extrusion")) {
     auto extrusion = parse_extrusion(args.frame.extrusion);
     if (!extrusion) return fail("--extrusion: " + extrusion.error().message);

@@ -280,38 +280,6 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
        {{GL_VERTEX_SHADER, kSurfaceVertex},
         {GL_GEOMETRY_SHADER, kSurfaceGeometry},
         {GL_FRAGMENT_SHADER, kLitFragment}}},
-      {&r->volume_cpu_[0],
-       "cpu volumes",
-       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, count[0].c_str()}}},
-      {&r->volume_gpu_[0],
-       "gpu volumes",
-       {{GL_VERTEX_SHADER, kPassVertex},
-        {GL_GEOMETRY_SHADER, kVolumeGeometry},
-        {GL_FRAGMENT_SHADER, count[0].c_str()}}},
-      {&r->light_map_cpu_[0],
-       "cpu volumes into the light map",
-       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, light_map[0].c_str()}}},
-      {&r->light_map_gpu_[0],
-       "gpu volumes into the light map",
-       {{GL_VERTEX_SHADER, kPassVertex},
-        {GL_GEOMETRY_SHADER, kVolumeGeometry},
-        {GL_FRAGMENT_SHADER, light_map[0].c_str()}}},
-      {&r->volume_cpu_[1],
-       "cpu volumes in strips",
-       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, count[1].c_str()}}},
-      {&r->volume_gpu_[1],
-       "gpu volumes in strips",
-       {{GL_VERTEX_SHADER, kPassVertex},
-        {GL_GEOMETRY_SHADER, kVolumeGeometry},
-        {GL_FRAGMENT_SHADER, count[1].c_str()}}},
-      {&r->light_map_cpu_[1],
-       "cpu volumes into the light map in strips",
-       {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, light_map[1].c_str()}}},
-      {&r->light_map_gpu_[1],
-       "gpu volumes into the light map in strips",
-       {{GL_VERTEX_SHADER, kPassVertex},
-        {GL_GEOMETRY_SHADER, kVolumeGeometry},
-        {GL_FRAGMENT_SHADER, light_map[1].c_str()}}},
       {&r->cover_,
        "transparent surfaces in front",
        {{GL_VERTEX_SHADER, kSurfaceVertex}, {GL_FRAGMENT_SHADER, kCoverFragment}}},
@@ -325,10 +293,36 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
        "resolve",
        {{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveFragment}}},
   };
-  for (const Build& b : builds) {
-    auto program = link_program(b.name, b.sources);
+  auto link = [](const Build& b, const std::string& name) -> Expected<void> {
+    auto program = link_program(name.c_str(), b.sources);
     if (!program) return program.error();
     *b.out = std::move(*program);
+    return {};
+  };
+  for (const Build& b : builds)
+    if (auto ok = link(b, b.name); !ok) return ok.error();
+  // The count passes, over the whole image ([0]) and in strips ([1]), from CPU or GPU volumes.
+  for (int strips = 0; strips < 2; ++strips) {
+    const char* in = strips ? " in strips" : "";
+    const Build counts[] = {
+        {&r->volume_cpu_[strips],
+         "cpu volumes",
+         {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, count[strips].c_str()}}},
+        {&r->volume_gpu_[strips],
+         "gpu volumes",
+         {{GL_VERTEX_SHADER, kPassVertex},
+          {GL_GEOMETRY_SHADER, kVolumeGeometry},
+          {GL_FRAGMENT_SHADER, count[strips].c_str()}}},
+        {&r->light_map_cpu_[strips],
+         "cpu volumes into the light map",
+         {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, light_map[strips].c_str()}}},
+        {&r->light_map_gpu_[strips],
+         "gpu volumes into the light map",
+         {{GL_VERTEX_SHADER, kPassVertex},
+          {GL_GEOMETRY_SHADER, kVolumeGeometry},
+          {GL_FRAGMENT_SHADER, light_map[strips].c_str()}}}};
+    for (const Build& b : counts)
+      if (auto ok = link(b, std::string(b.name) + in); !ok) return ok.error();
   }
   r->empty_vao_ = make_vertex_array();
 

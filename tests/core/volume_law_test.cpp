@@ -61,6 +61,18 @@ Counts caster_count(
   return n;
 }
 
+// O: a far point whose own segment to the light crosses no caster, i.e. outside every shadow;
+// false where none is found (a light inside a closed solid).
+bool far_lit_point(const Topology& topo, const HPoint& light, std::mt19937& rng, HPoint& o) {
+  std::uniform_int_distribution<int> far(-3000, 3000);
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    o = {far(rng), far(rng), far(rng), 1};
+    const Counts c = caster_count(topo, o, light, false);
+    if (!c.ambiguous && c.value == 0) return true;
+  }
+  return false;
+}
+
 // Signed crossings of every primitive of `list` (kCorners vertices each; quads split as the
 // renderer splits them) by the segment a -> b, each counted with the side `a` is on.
 void add_crossings(const PrimitiveList& list, int corners, const HPoint& a, const HPoint& b,
@@ -174,16 +186,8 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
   const bool front_only = used == Generator::standard;
   const HPoint l = testing::exact(light);
 
-  // O: a far point whose own segment to the light crosses no caster, i.e. outside every shadow.
-  std::uniform_int_distribution<int> far(-3000, 3000);
   HPoint o{};
-  bool found = false;
-  for (int attempt = 0; attempt < 200 && !found; ++attempt) {
-    o = {far(rng), far(rng), far(rng), 1};
-    const Counts c = caster_count(topo, o, l, false);
-    found = !c.ambiguous && c.value == 0;
-  }
-  if (!found) {  // e.g. a light inside a closed solid: nothing outside is lit
+  if (!far_lit_point(topo, l, rng, o)) {  // e.g. a light inside a closed solid: nothing is lit
     ++stats.skipped_lights;
     return;
   }
@@ -377,15 +381,8 @@ void check_clamped_law(const testing::NamedMesh& named, const glm::vec4& light, 
   build_volume(topo, light, {generator, true}, scratch, volume, &clamp);
   const bool front_only = resolve_generator(generator, topo.report) == Generator::standard;
   const HPoint l = testing::exact(light);
-  std::uniform_int_distribution<int> far(-3000, 3000);
   HPoint o{};
-  bool found = false;
-  for (int attempt = 0; attempt < 200 && !found; ++attempt) {
-    o = {far(rng), far(rng), far(rng), 1};
-    const Counts c = caster_count(topo, o, l, false);
-    found = !c.ambiguous && c.value == 0;
-  }
-  if (!found) return;
+  if (!far_lit_point(topo, l, rng, o)) return;
   ++stats.lights;
   constexpr int kGrid = 7;
   std::uniform_int_distribution<std::size_t> pick_face(0, topo.face_count() - 1);

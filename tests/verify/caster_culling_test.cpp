@@ -1,4 +1,4 @@
-// CC shadow volumes' culling (render/caster_culling.h, accel/light_views.h), on scenes made by
+// CC shadow volumes' culling (render/cc_shadow_volumes.h, accel/light_views.h), on scenes made by
 // hand so that what must be culled and what must be kept is known, on both backends; every
 // frame is also checked against the ray-traced reference, which decides.
 #include <gtest/gtest.h>
@@ -9,6 +9,7 @@
 
 #include "backend/backend.h"
 #include "core/shapes.h"
+#include "reference_check.h"
 #include "scene/scene.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
@@ -54,14 +55,7 @@ class CasterCulling : public ::testing::TestWithParam<Backend> {
     auto made = make_renderer(GetParam());
     EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
     if (!made) return {};
-    Frame frame = made->renderer->render(scene, options);
-    auto reference = trace_reference(scene, kWidth, kHeight);
-    EXPECT_TRUE(reference.ok());
-    if (!reference) return frame;
-    const Comparison c = compare(frame, *reference);
-    EXPECT_GT(c.pixels_compared, 0u);
-    EXPECT_EQ(c.mismatched_outside_band, 0u) << c.mismatched << " mismatched in all";
-    return frame;
+    return testing::render_checked(*made->renderer, scene, options);
   }
 };
 

@@ -9,6 +9,7 @@
 
 #include "backend/backend.h"
 #include "core/shapes.h"
+#include "reference_check.h"
 #include "render/cc_shadow_volumes.h"
 #include "render/frame_plan.h"
 #include "scene/scene.h"
@@ -45,17 +46,7 @@ class CcClamping : public ::testing::TestWithParam<Backend> {
     auto made = make_renderer(GetParam());
     EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
     if (!made) return {};
-    return checked(*made->renderer, scene, options);
-  }
-  Frame checked(Renderer& renderer, const Scene& scene, const RenderOptions& options) {
-    Frame frame = renderer.render(scene, options);
-    auto reference = trace_reference(scene, kWidth, kHeight);
-    EXPECT_TRUE(reference.ok());
-    if (!reference) return frame;
-    const Comparison c = compare(frame, *reference);
-    EXPECT_GT(c.pixels_compared, 0u);
-    EXPECT_EQ(c.mismatched_outside_band, 0u) << c.mismatched << " mismatched in all";
-    return frame;
+    return testing::render_checked(*made->renderer, scene, options);
   }
 };
 
@@ -136,7 +127,8 @@ TEST_P(CcClamping, TheCorridorsWalkStaysExactFrameByFrame) {
   options.cull = Cull::frustum;
   options.clamp = Clamp::both;
   for (int f = 0; f < 48; f += 12) {
-    const Frame frame = checked(*made->renderer, scene_at_frame(*corridor, f), options);
+    const Frame frame =
+        testing::render_checked(*made->renderer, scene_at_frame(*corridor, f), options);
     EXPECT_GT(frame.stats.volumes_clamped, 10) << f;
   }
 }

@@ -1,0 +1,25 @@
+// What the verify tests share: a frame rendered and checked against the ray-traced reference,
+// which decides (DESIGN.md's invariant: no mismatch outside the one-pixel band).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "trace/reference.h"
+#include "verify/verify.h"
+
+namespace shadowvol::testing {
+
+inline Frame render_checked(Renderer& renderer, const Scene& scene, const RenderOptions& options) {
+  Frame frame = renderer.render(scene, options);
+  auto reference = trace_reference(scene, options.width, options.height);
+  EXPECT_TRUE(reference.ok());
+  if (!reference) return frame;
+  const Comparison c = compare(frame, *reference);
+  EXPECT_GT(c.pixels_compared, 0u);
+  EXPECT_EQ(c.mismatched_outside_band, 0u) << c.mismatched << " mismatched in all";
+  return frame;
+}
+
+}  // namespace shadowvol::testing
