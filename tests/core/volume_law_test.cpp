@@ -347,6 +347,8 @@ bool make_test_clamp(const Topology& topo, const glm::vec4& light, bool cull_lea
       deepest[f % 3] = std::max(deepest[f % 3], glm::dot(n, p));
     }
   }
+  for (float& d : deepest)  // a leaf without faces (a mesh of one or two): bounds like leaf 0's
+    if (d == -1e30f) d = std::max({deepest[0], deepest[1], deepest[2]});
   const float unit = glm::length(n);
   auto at = [&](int leaf, float steps) { return std::ceil(deepest[leaf] + steps * unit); };
   clamp.depth = glm::vec4(n, 0.0f);
