@@ -1,4 +1,5 @@
 // `bench --suite cc`: CC shadow volumes' measurement (Lloyd et al. 2004 §4, Fig. 7 to 9).
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -199,9 +200,10 @@ int run_cc_suite(const CcSuiteOptions& options) {
   // frames spread over the corridor's walk: the volumes' time of sv less the clamping's and the
   // volumes' time of ccd.
   const Scene corridor = *builtin_scene("corridor");
-  std::vector<Scene> sweep_frames;
-  for (int k = 0; k < kSweepFrames; ++k)
-    sweep_frames.push_back(scene_at_frame(corridor, k * kCorridorWalk / kSweepFrames));
+  std::vector<Scene> sweep_frames;  // no more than the suite's own frames
+  const int sweep_count = std::min(kSweepFrames, options.frames);
+  for (int k = 0; k < sweep_count; ++k)
+    sweep_frames.push_back(scene_at_frame(corridor, k * kCorridorWalk / sweep_count));
   std::unique_ptr<Renderer> sv_renderer = make();
   if (!sv_renderer) return 1;
   CcSeries sv_sweep;
@@ -210,7 +212,7 @@ int run_cc_suite(const CcSuiteOptions& options) {
   PlotPanel sweep_panel{"corridor, slice sweep: ms a frame with 2^x slices", {}};
   std::vector<double> sv_ms, ccd_ms;
   std::fprintf(table, "slice sweep (corridor, %d frames over its walk, ccd against sv):\n",
-               kSweepFrames);
+               sweep_count);
   for (const int slices : kSweepSlices) {
     status.show("slice sweep: " + std::to_string(slices) + " slices");
     std::unique_ptr<Renderer> renderer = make();
@@ -228,12 +230,12 @@ int run_cc_suite(const CcSuiteOptions& options) {
                      {"ms_saved", ms_saved},
                      {"ms_clamp", mean(s.clamp_ms)},
                      {"ms_volumes_drawn", mean(s.volumes_ms)},
-                     {"fill", double(total(s.fill)) / kSweepFrames}});
+                     {"fill", double(total(s.fill)) / sweep_count}});
     std::fprintf(table,
                  "  %2d slices: clamping %7.1f ms + volumes %7.1f ms against sv's %7.1f ms: "
                  "%+7.1f ms saved a frame; fill %.0f (sv %.0f)\n",
                  slices, mean(s.clamp_ms), mean(s.volumes_ms), mean(sv_sweep.volumes_ms), ms_saved,
-                 double(total(s.fill)) / kSweepFrames, double(total(sv_sweep.fill)) / kSweepFrames);
+                 double(total(s.fill)) / sweep_count, double(total(sv_sweep.fill)) / sweep_count);
   }
   status.clear();
   sweep_panel.series.push_back({"sv: volumes", kCcMethods[kSv].color, sv_ms});

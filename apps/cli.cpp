@@ -161,20 +161,19 @@ Expected<std::unique_ptr<Renderer>> make_frame_renderer(const ResolvedFrame& fra
 
 std::string method_label(const RenderOptions& options) {
   const bool split = options.method == Method::split_plane;
-  const bool laine = split && options.split_planes == SplitPlanes::laine;
-  const bool whole = split && options.split_parts == SplitParts::whole;
-  return std::string(to_string(options.method)) + (laine ? " (Laine's planes)" : "") +
-         (whole ? " (one plane per object)" : "") +
-         (options.extrusion == Extrusion::bounded ? " (bounded)" : "") +
-         (options.cull != Cull::none ? " (culled by " + std::string(to_string(options.cull)) + ")"
-                                     : "") +
-         (options.clamp != Clamp::none
-              ? " (clamped " + std::string(to_string(options.clamp)) +
-                    (clamps_discrete(options.clamp)
-                         ? ", " + std::to_string(options.slices) + " slices"
-                         : "") +
-                    ")"
-              : "");
+  std::string label(to_string(options.method));
+  if (split && options.split_planes == SplitPlanes::laine) label += " (Laine's planes)";
+  if (split && options.split_parts == SplitParts::whole) label += " (one plane per object)";
+  if (options.extrusion == Extrusion::bounded) label += " (bounded)";
+  if (options.cull != Cull::none)
+    label += " (culled by " + std::string(to_string(options.cull)) + ")";
+  if (options.clamp != Clamp::none) {
+    label += " (clamped " + std::string(to_string(options.clamp));
+    if (clamps_discrete(options.clamp))
+      label += ", " + std::to_string(options.slices) + (options.slices == 1 ? " slice" : " slices");
+    label += ")";
+  }
+  return label;
 }
 
 }  // namespace shadowvol::cli

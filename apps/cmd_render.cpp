@@ -27,7 +27,7 @@ struct RenderArgs {
   std::string light_map;  // PNG of the light that reaches each surface
 };
 
-void print_stats(const FrameStats& s, bool counts_work) {
+void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_work) {
   std::printf(
       "  depth %.1f ms, volumes %.1f ms, counts %.1f ms, shade %.1f ms, read-back %.1f ms\n",
       s.ms_depth, s.ms_volumes, s.ms_counts, s.ms_shade, s.ms_readback);
@@ -37,22 +37,24 @@ void print_stats(const FrameStats& s, bool counts_work) {
       s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
       s.volumes_built, s.volumes_reused);
   using ull = unsigned long long;
-  if (s.light_views > 0)
+  if (options.cull != Cull::none)
     std::printf(
         "  culling %.1f ms: %d light views, %llu queries, casters culled in shadow %d, for "
         "unseen shadows %d, sub-objects culled %d\n",
         s.ms_cull, s.light_views, ull(s.cull_queries), s.casters_culled_in_shadow,
         s.casters_culled_unseen, s.sub_objects_culled);
-  if (s.volume_costs.measured())
-    std::printf("  volume costs (measured at start): v %.3g ms per vertex, r %.3g ms per pixel\n",
-                s.volume_costs.ms_per_vertex, s.volume_costs.ms_per_pixel);
-  if (s.ms_clamp > 0 || s.volumes_clamped > 0 || s.slice_queries > 0)
+  if (clamps_continuous(options.clamp))
     std::printf(
-        "  clamping %.1f ms: %d volumes clamped continuously (%llu overlapping pairs, %llu "
-        "sort interchanges, %llu intervals merged as V > R), %llu slice queries, %d volumes in "
-        "no slice\n",
-        s.ms_clamp, s.volumes_clamped, ull(s.clamp_pairs), ull(s.clamp_swaps),
-        ull(s.intervals_merged_by_cost), ull(s.slice_queries), s.volumes_clamped_away);
+        "  continuous clamping: %d volumes clamped (%llu overlapping pairs, %llu sort "
+        "interchanges, %llu intervals merged as V > R; v %.3g ms per vertex, r %.3g ms per pixel, "
+        "measured at start)\n",
+        s.volumes_clamped, ull(s.clamp_pairs), ull(s.clamp_swaps), ull(s.intervals_merged_by_cost),
+        s.volume_costs.ms_per_vertex, s.volume_costs.ms_per_pixel);
+  if (clamps_discrete(options.clamp))
+    std::printf("  discrete clamping: %d slice%s, %llu slice queries, %d volumes in no slice\n",
+                options.slices, options.slices == 1 ? "" : "s", ull(s.slice_queries),
+                s.volumes_clamped_away);
+  if (options.clamp != Clamp::none) std::printf("  clamping %.1f ms in all\n", s.ms_clamp);
   std::printf("  %llu volume segments drawn", ull(s.volume_segments));
   if (s.fill > 0 || s.stencil_writes > 0)
     std::printf(", fill %llu pixels, stencil writes %llu", ull(s.fill), ull(s.stencil_writes));
@@ -113,7 +115,8 @@ int run(const RenderArgs& args) {
                  "wrote %s (the light that reaches each surface, all lights at full = white)\n",
                  args.light_map.c_str());
   }
-  if (args.stats && !args.json) print_stats(frame.stats, (*renderer)->backend().counts_work());
+  if (args.stats && !args.json)
+    print_stats(frame.stats, options, (*renderer)->backend().counts_work());
   if (args.json) {  // the last frame's figures, for scripts
     const FrameStats& s = frame.stats;
     nlohmann::json out = to_json(options);

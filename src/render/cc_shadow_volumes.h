@@ -24,7 +24,9 @@
 //   - Discrete clamping (§3.2.2, conservative as §3.2.3 asks; accel/slices.h): the samples go
 //     into the light views' layers by the strip of the image they lie in; a volume is drawn only
 //     in the runs of strips where one of its kept sub-objects passes the culling's test over that
-//     strip's receivers. Without Cull::occlusion, over the receivers alone.
+//     strip's receivers (without Cull::occlusion, over the receivers alone). The paper's query
+//     draws the caster projected onto the slice's far plane, depth test GREATER; here its box,
+//     fattened by a pixel, over-covers that projection in the conservative light views.
 // Runs on the CPU in double whatever the backend, so both cull and clamp the same: the tests'
 // conservative coverage (inner for occluders, outer for boxes and receivers) is what GPU
 // rasterization cannot give without conservative-raster extensions.

@@ -99,7 +99,7 @@ inline bool clamps_continuous(Clamp c) { return c == Clamp::continuous || c == C
 inline bool clamps_discrete(Clamp c) { return c == Clamp::discrete || c == Clamp::both; }
 // Discrete clamping's slices: the default from the sweep of `bench --suite cc` (docs/
 // cc-shadow-volumes.md), and the most a light's view keeps layers for.
-inline constexpr int kDefaultSlices = 4, kMaxSlices = 64;
+inline constexpr int kDefaultSlices = 1, kMaxSlices = 64;
 Expected<void> check_slices(int slices);
 
 struct RenderOptions {
