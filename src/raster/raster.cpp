@@ -623,6 +623,19 @@ CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::ve
   return camera_side ? CountRule::zpass : CountRule::zfail;
 }
 
+DepthBounds reached_depths(std::span<const glm::vec4> triangles) {
+  DepthBounds b{1.0f, 0.0f};
+  for (const glm::vec4& c : triangles) {
+    if (!(c.w > 0.0f)) return {};
+    const float z = std::clamp(c.z / c.w, 0.0f, 1.0f);
+    b.zmin = std::min(b.zmin, z);
+    b.zmax = std::max(b.zmax, z);
+  }
+  if (b.zmin > b.zmax) return b;  // nothing drawn
+  constexpr float kSlack = 1e-5f;
+  return {std::max(0.0f, b.zmin - kSlack), std::min(1.0f, b.zmax + kSlack)};
+}
+
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
                  DepthBounds bounds, const SplitPlane& split, const ScreenStrip& strip) {

@@ -165,6 +165,12 @@ struct DepthBounds {
   float zmin = 0.0f;
   float zmax = 1.0f;
 };
+// The window depths clip-space triangles reach (clamped to 0 .. 1 as drawn, widened by a hair
+// for the rasterizer's rounding): a pixel whose stored depth lies outside them sees no primitive
+// on one side of it, so a closed volume's count there is 0 under either rule, the near plane's
+// cut included (vertices beyond it clamp to depth 1). Every depth {0, 1} if a vertex has w <= 0:
+// behind the eye, its triangles' depths are not bounded by their vertices'.
+DepthBounds reached_depths(std::span<const glm::vec4> triangles);
 
 // A strip of the image a draw is limited to: the pixels whose centre has s = across . ndc in
 // [lo, hi] (NDC: x right, y up, each -1 .. 1). CC shadow volumes' discrete clamping (Lloyd et al.

@@ -167,9 +167,13 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
     if (!vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 1);
     if (!vp.dark_caps_everywhere()) add(v.dark_caps, kTriangleCorners, 1);
   }
-  // Depth bounds, Laine 2005 §7's (VolumePlan::depth_bounds). Pre-filled z-pass starts inside the
-  // volume: a pixel beyond all of it must still count its way out, so no far bound.
-  raster::DepthBounds bounds = vp.depth_bounds;
+  // Depth bounds, Laine 2005 §7's (VolumePlan::depth_bounds), within the depths the volume's own
+  // triangles reach: a clamped or bounded volume's segments often lie in a narrow range of them.
+  // Pre-filled z-pass starts inside the volume: a pixel beyond all of it must still count its way
+  // out, so no far bound.
+  const raster::DepthBounds reached = raster::reached_depths(tris_);
+  raster::DepthBounds bounds{std::max(vp.depth_bounds.zmin, reached.zmin),
+                             std::min(vp.depth_bounds.zmax, reached.zmax)};
   if (vp.prefill) {  // ZP+: where z-pass counts, start from the near plane's count
     bounds.zmin = 0.0f;
     prefill_tris_.clear();

@@ -479,5 +479,62 @@ TEST(Raster, FillCountsCoveredPixelsAndAStripKeepsItsPixels) {
   EXPECT_EQ(strip_fill.pixels_processed, std::uint64_t(pixels));
 }
 
+// reached_depths bounds what a volume's triangles can draw: a closed box counted under either
+// rule changes no pixel outside them, so the counts are the same with them as without, and
+// fewer pixels are processed. Vertices beyond the near plane reach depth 1; one behind the eye
+// bounds nothing.
+TEST(Raster, TheDepthsTrianglesReachBoundTheirCountsAndGiveUpBehindTheEye) {
+  const int w = 64, h = 64;
+  const float near = 0.1f;
+  const glm::mat4 proj = infinite_reversed_perspective(glm::radians(60.0f), 1.0f, near);
+  // A box 2 wide, from eye depth 4 to 6, faces counter-clockwise seen from outside.
+  const glm::vec3 lo(-1, -1, -6), hi(1, 1, -4);
+  auto corner = [&](int i) {
+    return glm::vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+  };
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  std::vector<glm::vec4> box;
+  for (const auto& q : quads)
+    for (const int t : {0, 1, 2, 0, 2, 3}) box.push_back(proj * glm::vec4(corner(q[t]), 1.0f));
+  const DepthBounds reached = reached_depths(box);
+  EXPECT_NEAR(reached.zmin, near / 6.0f, 2e-5f);
+  EXPECT_NEAR(reached.zmax, near / 4.0f, 2e-5f);
+  EXPECT_LE(reached.zmin, near / 6.0f);
+  EXPECT_GE(reached.zmax, near / 4.0f);
+  // Receivers in front of the box, inside it and behind it (eye depths 3, 5, 7), tile by tile.
+  auto receivers = [&](Target& target) {
+    for (int py = 0; py < h; ++py)
+      for (int px = 0; px < w; ++px)
+        target.depth[py * w + px] = near / (3.0f + 2.0f * ((px / kTileSize + py / kTileSize) % 3));
+    target.update_tile_depth();
+  };
+  const std::vector<std::int32_t> weights(box.size() / 3, 1);
+  for (const CountRule rule : {CountRule::zpass, CountRule::zfail}) {
+    Target unbounded(w, h), bounded(w, h);
+    receivers(unbounded);
+    receivers(bounded);
+    Counters all, within;
+    draw_counts(unbounded, box, weights, rule, all);
+    draw_counts(bounded, box, weights, rule, within, reached);
+    EXPECT_EQ(bounded.count, unbounded.count);
+    EXPECT_GT(std::count(bounded.count.begin(), bounded.count.end(), 1), w);  // inside the box
+    EXPECT_LT(within.pixels_processed, all.pixels_processed);
+  }
+  // Beyond the near plane (eye depth 0.05): depth 1. At infinity ahead (w = 0): depth 0.
+  const std::vector<glm::vec4> to_near = {proj * glm::vec4(0, 0, -0.05f, 1),
+                                          proj * glm::vec4(1, 0, -5, 1),
+                                          proj * glm::vec4(0, 1, -5, 0)};
+  EXPECT_EQ(reached_depths(to_near).zmax, 1.0f);
+  EXPECT_EQ(reached_depths(to_near).zmin, 0.0f);
+  // Behind the eye (w < 0): no bound.
+  const std::vector<glm::vec4> behind_eye = {
+      proj * glm::vec4(0, 0, 1, 1), proj * glm::vec4(1, 0, -5, 1), proj * glm::vec4(0, 1, -5, 1)};
+  EXPECT_EQ(reached_depths(behind_eye).zmin, 0.0f);
+  EXPECT_EQ(reached_depths(behind_eye).zmax, 1.0f);
+  // Nothing drawn: an empty range.
+  EXPECT_GT(reached_depths({}).zmin, reached_depths({}).zmax);
+}
+
 }  // namespace
 }  // namespace shadowvol::raster
