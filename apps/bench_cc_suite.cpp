@@ -75,6 +75,8 @@ int run_cc_suite(const CcSuiteOptions& options) {
   }
   RenderOptions base{options.width, options.height, options.method};
   base.count_fill = true;
+  base.slices = options.slices;
+  base.light_view_size = options.light_view_size;
   auto make = [&]() -> std::unique_ptr<Renderer> {
     auto made = make_renderer(options.backend, options.gl, base);
     if (!made) {
@@ -90,6 +92,8 @@ int run_cc_suite(const CcSuiteOptions& options) {
                       {"width", options.width},
                       {"height", options.height},
                       {"frames", options.frames},
+                      {"slices", options.slices},
+                      {"light_view_size", options.light_view_size},
                       {"backend", backend},
                       {"method", std::string(to_string(options.method))},
                       {"goal", {{"scene", "corridor"}, {"fill", kGoalFill}, {"time", kGoalTime}}},
@@ -105,6 +109,10 @@ int run_cc_suite(const CcSuiteOptions& options) {
   cli::StatusLine status;
   bool goal_met = false;
   double corridor_fill = 0, corridor_time = 0;
+  std::fprintf(table, "%d frame%s a scene, %dx%d, %s, %s; ccd and cc with %d slice%s\n",
+               options.frames, options.frames == 1 ? "" : "s", options.width, options.height,
+               backend.c_str(), std::string(to_string(options.method)).c_str(), options.slices,
+               options.slices == 1 ? "" : "s");
   std::fprintf(table, "%-9s %-5s %14s %14s %9s %11s %9s %9s %9s\n", "scene", "", "fill",
                "stencil wr.", "segments", "volumes ms", "cull ms", "clamp ms", "frame ms");
   for (const CcScene& cc_scene : kCcScenes) {
@@ -176,7 +184,7 @@ int run_cc_suite(const CcSuiteOptions& options) {
     }
     const char* titles[] = {"fill", "stencil writes", "shadow-volume ms"};
     for (int c = 0; c < 3; ++c) {
-      PlotPanel panel{scene.name + ": " + titles[c], {}};
+      PlotPanel panel{scene.name + ": " + titles[c], {}, {}};
       for (std::size_t m = 0; m < std::size(kCcMethods); ++m) {
         const CcSeries& s = series[m];
         const std::vector<double> values =
@@ -209,7 +217,7 @@ int run_cc_suite(const CcSuiteOptions& options) {
   CcSeries sv_sweep;
   for (const Scene& at : sweep_frames) sv_sweep.add(sv_renderer->render(at, base).stats);
   nlohmann::json sweep = nlohmann::json::array();
-  PlotPanel sweep_panel{"corridor, slice sweep: ms a frame with 2^x slices", {}};
+  PlotPanel sweep_panel{"corridor, slice sweep: ms a frame", {}, "log2 of slices (1 to 64)"};
   std::vector<double> sv_ms, ccd_ms;
   std::fprintf(table, "slice sweep (corridor, %d frames over its walk, ccd against sv):\n",
                sweep_count);

@@ -183,7 +183,7 @@ int run_spsv_suite(const SuiteOptions& options) {
                    total(series.count_ms));
     }
     for (const Counter& counter : kCounters) {
-      PlotPanel panel{scene.name + ": " + counter.title, {}};
+      PlotPanel panel{scene.name + ": " + counter.title, {}, {}};
       for (std::size_t m = 0; m < std::size(kMethods); ++m) {
         const std::vector<std::uint64_t>& values = all_series[m].*counter.values;
         panel.series.push_back({kMethods[m].name, kMethods[m].color,

@@ -71,6 +71,8 @@ struct CcSuiteOptions {
   Method method = Method::automatic;
   Backend backend = Backend::soft;
   gl::GlSettings gl;
+  int slices = kDefaultSlices;  // ccd's and cc's (the slice sweep sets its own)
+  int light_view_size = 512;
   std::string json, csv, plot;  // as SuiteOptions's
 };
 

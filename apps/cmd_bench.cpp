@@ -1,9 +1,12 @@
 // shadowvol bench: frame times of scenes on a backend (the library's timing harness,
 // render/frame_timing.h), or a measurement suite (bench_suite.h).
+#include <algorithm>
 #include <cstdio>
+#include <initializer_list>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -121,8 +124,29 @@ Expected<void> suite_size(const BenchArgs& args, int& width, int& height) {
   return {};
 }
 
-// `bench --suite cc`: the size, method, frames and backend as given, else the suite's own.
+// A suite sets the rest of the frame's options itself: one given that it does not take is an
+// error, not silently ignored.
+Expected<void> refuse_options_not_taken(const BenchArgs& args,
+                                        std::initializer_list<const char*> taken) {
+  for (const char* option :
+       {"--scenes", "--generator", "--extrusion", "--split-planes", "--split-parts", "--cull",
+        "--clamp", "--slices", "--light-view", "--method", "--backend", "--volumes", "--counts"}) {
+    if (!args.given(option)) continue;
+    if (std::find_if(taken.begin(), taken.end(),
+                     [&](const char* t) { return std::string_view(t) == option; }) == taken.end())
+      return make_error(std::string(option) + ": --suite " + args.suite +
+                        " does not take it (the suite sets its own)");
+  }
+  return {};
+}
+
+// `bench --suite cc`: the size, method, frames, backend, slices and light views' side as given,
+// else the suite's own.
 int cc_suite(const BenchArgs& args) {
+  if (auto ok = refuse_options_not_taken(
+          args, {"--method", "--backend", "--volumes", "--counts", "--slices", "--light-view"});
+      !ok)
+    return fail(ok.error().message);
   CcSuiteOptions suite;
   suite.json = args.json_file;
   suite.csv = args.csv;
@@ -141,6 +165,12 @@ int cc_suite(const BenchArgs& args) {
   auto counts = gl::parse_count_target(args.frame.counts);
   if (!counts) return fail("--counts: " + counts.error().message);
   suite.gl = {*volumes, *counts};
+  if (auto ok = check_slices(args.frame.slices); !ok)
+    return fail("--slices: " + ok.error().message);
+  suite.slices = args.frame.slices;
+  if (auto ok = check_light_view_size(args.frame.light_view); !ok)
+    return fail("--light-view: " + ok.error().message);
+  suite.light_view_size = args.frame.light_view;
   return run_cc_suite(suite);
 }
 
@@ -150,6 +180,8 @@ int suite(const BenchArgs& args) {
   if (args.suite == "cc") return cc_suite(args);
   if (args.suite != "spsv")
     return fail("--suite: unknown suite '" + args.suite + "': expected spsv or cc");
+  if (auto ok = refuse_options_not_taken(args, {"--extrusion"}); !ok)
+    return fail(ok.error().message);
   SuiteOptions suite{args.frames, 1024, 768, args.json_file, args.csv, args.plot};
   if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
   if (auto ok = suite_size(args, suite.width, suite.height); !ok) return fail(ok.error().message);

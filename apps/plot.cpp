@@ -116,7 +116,7 @@ Image draw_chart(const Chart& chart) {
   for (std::size_t i = 0; i < chart.panels.size(); ++i) {
     const int col = static_cast<int>(i) % columns, row = static_cast<int>(i) / columns;
     draw_panel(image, 10 + col * kPanelWidth, kHeader + row * kPanelHeight, chart.panels[i],
-               chart.x_label);
+               chart.panels[i].x_label.empty() ? chart.x_label : chart.panels[i].x_label);
   }
   return image;
 }

@@ -23,6 +23,7 @@ struct PlotSeries {
 struct PlotPanel {
   std::string title;
   std::vector<PlotSeries> series;
+  std::string x_label;  // under this panel; empty: the chart's
 };
 
 struct Chart {

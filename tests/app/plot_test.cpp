@@ -58,10 +58,11 @@ TEST(BitmapFont, ClipsAtTheImageEdges) {
 }
 
 // A series that rises puts its last point higher on the image than its first, in its colour,
-// and two panels side by side make the chart about twice as wide as one.
+// two panels side by side make the chart about twice as wide as one, and a panel may have an x
+// label of its own.
 TEST(Chart, DrawsEachSeriesInItsColourWhereItsValuesFall) {
   const glm::vec3 red{1.0f, 0.0f, 0.0f};
-  Chart one{"title", "frame", 1, {{"panel", {{"rising", red, {0.0, 10.0, 20.0, 40.0}}}}}};
+  Chart one{"title", "frame", 1, {{"panel", {{"rising", red, {0.0, 10.0, 20.0, 40.0}}}, {}}}};
   const Image image = draw_chart(one);
   int first_y = -1, last_y = -1, lo_x = image.width, hi_x = -1;
   for (int y = image.height / 4; y < image.height; ++y)  // below the title and the legend
@@ -79,6 +80,15 @@ TEST(Chart, DrawsEachSeriesInItsColourWhereItsValuesFall) {
   two.panels.push_back(two.panels[0]);
   EXPECT_NEAR(draw_chart(two).width, 2 * image.width, 40);
   EXPECT_EQ(draw_chart(two).height, image.height);
+  // A panel's own x label replaces the chart's under it: another label changes the image, the
+  // chart's own label given to the panel draws the same image.
+  Chart relabelled = one;
+  relabelled.panels[0].x_label = "slices";
+  const Image other = draw_chart(relabelled);
+  ASSERT_EQ(other.rgba.size(), image.rgba.size());
+  EXPECT_NE(other.rgba, image.rgba);
+  relabelled.panels[0].x_label = "frame";
+  EXPECT_EQ(draw_chart(relabelled).rgba, image.rgba);
 }
 
 }  // namespace
