@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 namespace shadowvol {
 namespace {
@@ -114,6 +116,19 @@ void SceneBvh::build_nodes(std::span<const BvhBox> boxes) {
     stack.push_back({middle, task.first + task.count - middle, index});
     stack.push_back({task.first, middle - task.first, UINT32_MAX});
   }
+}
+
+std::array<std::uint32_t, 2> SceneBvh::children_near_first(std::uint32_t node,
+                                                           const glm::vec3& eye) const {
+  const std::uint32_t first = node + 1, second = second_child(node);
+  auto key = [&](std::uint32_t child) {
+    const BvhBox& b = nodes_[child].box;
+    const glm::vec3 outside = glm::max(glm::max(b.lo - eye, eye - b.hi), glm::vec3(0.0f));
+    const glm::vec3 to_centre = centroid(b) - eye;
+    return std::pair(glm::dot(outside, outside), glm::dot(to_centre, to_centre));
+  };
+  if (key(second) < key(first)) return {second, first};
+  return {first, second};
 }
 
 void SceneBvh::refit(std::span<const BvhBox> boxes) {

@@ -14,6 +14,7 @@
 // times what it cost when built, the caller's cue to build again (O(n log n)).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -55,6 +56,9 @@ class SceneBvh {
   std::span<const std::uint32_t> items_of(const Node& leaf) const {
     return std::span(items_).subspan(leaf.first, leaf.count);
   }
+  // An inner node's children, the one nearer `eye` first (by distance to its box, then to its
+  // box's centre): the order in which a front-to-back walk, as CHC's, takes them.
+  std::array<std::uint32_t, 2> children_near_first(std::uint32_t node, const glm::vec3& eye) const;
 
   // The surface area heuristic's cost of the tree: the expected number of node and item boxes a
   // random ray that meets the root tests, sum over nodes of area(node) / area(root) times 1 for

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -145,6 +146,49 @@ TEST(SceneBvh, RefitFollowsMovingItemsAndCuesARebuildAsTheyScatter) {
   boxes[0] = {};
   bvh.refit(boxes);
   check_tree(bvh, boxes);
+}
+
+// The leaves' items in the order a depth-first walk that takes the nearer child first meets them.
+std::vector<std::uint32_t> front_to_back(const SceneBvh& bvh, const glm::vec3& eye) {
+  std::vector<std::uint32_t> order, stack{0};
+  while (!stack.empty()) {
+    const std::uint32_t n = stack.back();
+    stack.pop_back();
+    const SceneBvh::Node& node = bvh.nodes()[n];
+    if (node.leaf()) {
+      for (const std::uint32_t item : bvh.items_of(node)) order.push_back(item);
+      continue;
+    }
+    const auto [near, far] = bvh.children_near_first(n, eye);
+    stack.push_back(far);
+    stack.push_back(near);
+  }
+  return order;
+}
+
+TEST(SceneBvh, AWalkNearerChildFirstMeetsItemsFrontToBack) {
+  // A row of boxes along x, 3 apart; leaves hold up to 4, so order is checked leaf by leaf.
+  std::vector<BvhBox> row;
+  for (int i = 0; i < 100; ++i) row.push_back(box_at(glm::vec3(3.0f * i, 0, 0), 1.0f));
+  SceneBvh bvh;
+  bvh.build(row);
+  auto position = [&](const std::vector<std::uint32_t>& order, std::size_t k) {
+    return row[order[k]].lo.x;
+  };
+  for (const float eye_x : {-50.0f, 400.0f}) {
+    const std::vector<std::uint32_t> order = front_to_back(bvh, glm::vec3(eye_x, 0, 0));
+    ASSERT_EQ(order.size(), row.size());
+    // Every item meets the walk before any item more than a leaf's width (4 boxes) farther away.
+    for (std::size_t k = 0; k + 1 < order.size(); ++k)
+      for (std::size_t j = k + 1; j < order.size(); ++j)
+        EXPECT_LE(std::abs(position(order, k) - eye_x),
+                  std::abs(position(order, j) - eye_x) + 3.0f * SceneBvh::kMaxLeafItems)
+            << "eye at " << eye_x;
+  }
+  // An eye in the middle of the row meets the item it stands at among the first leaf's.
+  const std::vector<std::uint32_t> order = front_to_back(bvh, glm::vec3(150.0f, 0, 0));
+  const auto first = std::find(order.begin(), order.end(), 50u);
+  EXPECT_LT(first - order.begin(), std::ptrdiff_t(SceneBvh::kMaxLeafItems));
 }
 
 TEST(SceneBvh, IsDeterministic) {
