@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <iostream>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -125,17 +126,21 @@ Expected<void> suite_size(const BenchArgs& args, int& width, int& height) {
 }
 
 // A suite sets the rest of the frame's options itself: one given that it does not take is an
-// error, not silently ignored.
+// error, not silently ignored. Every suite takes these; `taken` names its others.
 Expected<void> refuse_options_not_taken(const BenchArgs& args,
-                                        std::initializer_list<const char*> taken) {
-  for (const char* option :
-       {"--scenes", "--generator", "--extrusion", "--split-planes", "--split-parts", "--cull",
-        "--clamp", "--slices", "--light-view", "--method", "--backend", "--volumes", "--counts"}) {
-    if (!args.given(option)) continue;
-    if (std::find_if(taken.begin(), taken.end(),
-                     [&](const char* t) { return std::string_view(t) == option; }) == taken.end())
-      return make_error(std::string(option) + ": --suite " + args.suite +
-                        " does not take it (the suite sets its own)");
+                                        std::initializer_list<std::string_view> taken) {
+  constexpr std::string_view kEverySuite[] = {"--suite", "--frames", "--size",
+                                              "--json",  "--csv",    "--plot"};
+  auto among = [](std::span<const std::string_view> names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  for (const CLI::Option* option : args.cmd->get_options()) {
+    const std::string name = option->get_name();
+    if (option->count() == 0 || among(kEverySuite, name) ||
+        among({taken.begin(), taken.size()}, name))
+      continue;
+    return make_error(name + ": --suite " + args.suite +
+                      " does not take it (the suite sets its own)");
   }
   return {};
 }
