@@ -38,7 +38,9 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
   for (std::string_view n : builtin_scene_names())
     scenes += (scenes.empty() ? "" : ", ") + std::string(n);
   cmd->add_option("--scene", args.scene,
-                  "A built-in scene (" + scenes + "), a scene file (.json) or a mesh file")
+                  "A built-in scene (" + scenes +
+                      "; city:N and city-above:N, a city of N buildings), a scene file (.json) "
+                      "or a mesh file")
       ->capture_default_str();
   cmd->add_option("--method", args.method,
                   "zpass, zfail, auto (per object); soft backend only: spsv (per tile, by a split "

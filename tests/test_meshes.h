@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/mesh.h"
 #include "core/shapes.h"
+#include "scene/scene.h"
 
 namespace shadowvol::testing {
 
@@ -16,6 +18,14 @@ struct NamedMesh {
   std::string name;
   Mesh mesh;
 };
+
+// Every built-in scene by name, the cities at a size a test can afford (three blocks: city:48).
+inline std::vector<std::string> builtin_scenes_at_test_size() {
+  std::vector<std::string> names;
+  for (const std::string_view name : builtin_scene_names())
+    names.push_back(name.starts_with("city") ? std::string(name) + ":48" : std::string(name));
+  return names;
+}
 
 inline void add_triangle(Mesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   const auto base = static_cast<std::uint32_t>(m.positions.size());

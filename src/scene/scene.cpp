@@ -12,6 +12,7 @@
 #include "core/names.h"
 #include "core/projection.h"
 #include "core/shapes.h"
+#include "scene/city.h"
 
 namespace shadowvol {
 
@@ -463,18 +464,21 @@ struct Builtin {
   std::string_view name;
   Scene (*make)();
 };
-constexpr Builtin kBuiltins[] = {{"demo", demo},
-                                 {"camera-in-shadow", camera_in_shadow},
-                                 {"light-in-view", light_in_view},
-                                 {"directional", directional},
-                                 {"nonmanifold", nonmanifold},
-                                 {"glass", glass},
-                                 {"knight", knight},
-                                 {"knights16", knights16},
-                                 {"robots", robots},
-                                 {"corridor", corridor},
-                                 {"tree", tree_whole},
-                                 {"tree-decomposed", tree_decomposed}};
+constexpr Builtin kBuiltins[] = {
+    {"demo", demo},
+    {"camera-in-shadow", camera_in_shadow},
+    {"light-in-view", light_in_view},
+    {"directional", directional},
+    {"nonmanifold", nonmanifold},
+    {"glass", glass},
+    {"knight", knight},
+    {"knights16", knights16},
+    {"robots", robots},
+    {"corridor", corridor},
+    {"tree", tree_whole},
+    {"tree-decomposed", tree_decomposed},
+    {"city", [] { return make_city(kDefaultCityBuildings, CityView::street); }},
+    {"city-above", [] { return make_city(kDefaultCityBuildings, CityView::above); }}};
 
 }  // namespace
 
@@ -503,11 +507,13 @@ std::vector<std::string_view> builtin_scene_names() {
 }
 
 Expected<Scene> builtin_scene(std::string_view name) {
+  if (is_city_name(name)) return city_by_name(name);
   for (const Builtin& b : kBuiltins)
     if (b.name == name) return b.make();
   std::string known;
   for (const Builtin& b : kBuiltins) known += (known.empty() ? "" : ", ") + std::string(b.name);
-  return make_error("unknown scene '" + std::string(name) + "': the built-in scenes are " + known);
+  return make_error("unknown scene '" + std::string(name) + "': the built-in scenes are " + known +
+                    " (city:N and city-above:N: a city of N buildings)");
 }
 
 }  // namespace shadowvol

@@ -141,6 +141,8 @@ bool has_transparent_casters(const Scene& scene);
 //                     the camera walking its length: CC shadow volumes' clamping case
 //   robots            a crowd of robots marching in a walled room, a low light behind crates:
 //                     CC shadow volumes' culling case
+//   city, city:N      a city of N buildings (10,000 and about 1.2M triangles by default; scene/
+//                     city.h), seen walking down a street; city-above, city-above:N from above
 Expected<Scene> builtin_scene(std::string_view name);
 std::vector<std::string_view> builtin_scene_names();
 

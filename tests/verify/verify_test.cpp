@@ -20,6 +20,7 @@
 #include "scene/scene.h"
 #include "scene/scene_io.h"
 #include "trace/reference.h"
+#include "test_meshes.h"
 #include "verify/verify.h"
 
 namespace shadowvol {
@@ -115,11 +116,7 @@ Comparison verify(const Scene& scene, Method method, Generator generator = Gener
 }
 
 // Every built-in scene, by name.
-const std::vector<std::string> kSceneNames = [] {
-  std::vector<std::string> names;
-  for (const std::string_view name : builtin_scene_names()) names.emplace_back(name);
-  return names;
-}();
+const std::vector<std::string> kSceneNames = testing::builtin_scenes_at_test_size();
 
 using SceneMethod = std::tuple<std::string, Method, Variant, Extrusion>;
 class BuiltinScenes : public ::testing::TestWithParam<SceneMethod> {};
@@ -321,7 +318,7 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   EXPECT_EQ(scene.error().message,
             "unknown scene 'dmeo': the built-in scenes are demo, camera-in-shadow, light-in-view, "
             "directional, nonmanifold, glass, knight, knights16, robots, corridor, tree, "
-            "tree-decomposed");
+            "tree-decomposed, city, city-above (city:N and city-above:N: a city of N buildings)");
 }
 
 TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
@@ -628,7 +625,7 @@ TEST(TransparentCasters, CompareCatchesWrongLight) {
 // other's, with no boundary among the other frame's neighbours. Any difference at all is
 // reported. Their pictures agree away from such boundaries.
 TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
-  for (std::string_view name : builtin_scene_names()) {
+  for (const std::string& name : testing::builtin_scenes_at_test_size()) {
     auto scene = builtin_scene(name);
     ASSERT_TRUE(scene.ok());
     const RenderOptions options{kWidth, kHeight, Method::automatic, Generator::automatic};
