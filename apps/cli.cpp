@@ -69,6 +69,12 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
                   "them) or occlusion (receivers the image shows; casters in shadow or whose "
                   "shadow is unseen, tested conservatively in the light's views)")
       ->capture_default_str();
+  cmd->add_option("--occlusion", args.occlusion,
+                  "Hierarchical occlusion culling over the scene's BVH by occlusion queries (CHC): "
+                  "none, eye (the depth pass front to back, leaving out what the depth drawn so "
+                  "far hides), shadows (volumes whose object's box extruded away from the light "
+                  "holds no visible surface) or both; exact")
+      ->capture_default_str();
   cmd->add_option("--clamp", args.clamp,
                   "CC shadow volumes' clamping of volumes to where receivers lie: none, "
                   "continuous (per caster, the intervals of depth from the light that hold "
@@ -129,6 +135,8 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   if (!split_parts) return split_parts.error();
   auto cull = parsed("--cull", args.cull, parse_cull);
   if (!cull) return cull.error();
+  auto occlusion = parsed("--occlusion", args.occlusion, parse_occlusion);
+  if (!occlusion) return occlusion.error();
   auto clamp = parsed("--clamp", args.clamp, parse_clamp);
   if (!clamp) return clamp.error();
   if (auto ok = check_slices(args.slices); !ok)
@@ -144,6 +152,7 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args) {
   options.split_parts = *split_parts;
   options.cull = *cull;
   options.clamp = *clamp;
+  options.occlusion = *occlusion;
   options.slices = args.slices;
   options.light_view_size = args.light_view;
   if (auto ok = check_light_view_size(args.light_view); !ok)
@@ -169,6 +178,8 @@ std::string method_label(const RenderOptions& options) {
   if (options.extrusion == Extrusion::bounded) label += " (bounded)";
   if (options.cull != Cull::none)
     label += " (culled by " + std::string(to_string(options.cull)) + ")";
+  if (options.occlusion != Occlusion::none)
+    label += " (occlusion culling: " + std::string(to_string(options.occlusion)) + ")";
   if (options.clamp != Clamp::none) {
     label += " (clamped " + std::string(to_string(options.clamp));
     if (clamps_discrete(options.clamp))

@@ -50,6 +50,7 @@ struct FrameArgs {
   std::string split_planes = "sampled";
   std::string split_parts = "each";
   std::string cull = "none";
+  std::string occlusion = "none";
   std::string clamp = "none";
   int slices = kDefaultSlices;
   int light_view = 512;

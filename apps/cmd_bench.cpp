@@ -86,6 +86,7 @@ int bench(const BenchArgs& args) {
                 {"readback_ms", sum.ms_readback / n},
                 {"volume_primitives", sum.volume_primitives / args.frames}});
     row.update(cc_json(sum, args.frames, false));  // fill: bench --suite cc
+    row.update(nlohmann::json::object({occlusion_json(sum, args.frames)}));
     if (glass) {
       row["all_opaque_frame_ms"] = t[1].frame_ms;
       row["transparent_over_opaque"] = t[0].frame_ms / t[1].frame_ms;

@@ -43,6 +43,14 @@ void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_
         "unseen shadows %d, sub-objects culled %d\n",
         s.ms_cull, s.light_views, ull(s.cull_queries), s.casters_culled_in_shadow,
         s.casters_culled_unseen, s.sub_objects_culled);
+  if (options.occlusion != Occlusion::none)
+    std::printf(
+        "  occlusion culling (%s): %llu nodes visited, %llu queries (%llu waited for), objects "
+        "culled %d, drawn %d; volumes culled %d, drawn %d; BVH %s %.1f ms, shadow queries %.1f "
+        "ms\n",
+        std::string(to_string(options.occlusion)).c_str(), ull(s.nodes_visited), ull(s.queries),
+        ull(s.queries_waited), s.objects_culled, s.objects_drawn, s.volumes_culled, s.volumes_drawn,
+        s.bvh_rebuilt > 0 ? "built" : "refit", s.ms_bvh, s.ms_occlusion);
   if (clamps_continuous(options.clamp))
     std::printf(
         "  continuous clamping: %d volumes clamped (%llu overlapping pairs, %llu sort "
@@ -131,6 +139,7 @@ int run(const RenderArgs& args) {
                 {"triangles", s.triangles},
                 {"volume_primitives", s.volume_primitives}});
     out.update(cc_json(s));
+    out.update(nlohmann::json::object({occlusion_json(s)}));
     if ((*renderer)->backend().counts_work()) out["count_pass"] = to_json(s.counts);
     std::cout << out.dump(2) << "\n";
   }

@@ -57,6 +57,7 @@ int run(const VerifyArgs& args) {
                 {"max_light_error", c.max_light_error},
                 {"max_light_error_outside_band", c.max_light_error_outside_band}});
     out.update(cc_json(frame.stats));
+    out.update(nlohmann::json::object({occlusion_json(frame.stats)}));
     std::cout << out.dump(2) << "\n";
   } else {
     char light[160] = "";

@@ -325,6 +325,12 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
       if (auto ok = link(b, std::string(b.name) + in); !ok) return ok.error();
   }
   r->empty_vao_ = make_vertex_array();
+  {
+    auto query = link_program("occlusion query", {{GL_VERTEX_SHADER, kQueryVertex},
+                                                  {GL_FRAGMENT_SHADER, kQueryFragment}});
+    if (!query) return query.error();
+    r->query_ = std::move(*query);
+  }
 
   if (const std::string error = take_error(); !error.empty())
     return make_error("setting up the OpenGL backend failed with " + error);
@@ -391,10 +397,9 @@ Expected<void> check_frame(const GlSettings& settings, const RenderOptions& opti
 void GlBackend::finish() { glFinish(); }
 
 template <class PerObject>
-void GlBackend::draw_surfaces(Layer layer, PerObject&& per_object) {
+void GlBackend::draw_surfaces(std::span<const std::uint32_t> objects, PerObject&& per_object) {
   const FramePlan& plan = in_->plan;
-  for (std::size_t o = 0; o < plan.objects.size(); ++o) {
-    if (plan.transparent(o) != (layer == Layer::glass)) continue;
+  for (const std::uint32_t o : objects) {
     const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
     glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
     per_object(o);
@@ -405,6 +410,7 @@ void GlBackend::draw_surfaces(Layer layer, PerObject&& per_object) {
 
 void GlBackend::begin_frame(const FrameInputs& inputs) {
   in_ = &inputs;
+  queries_used_ = 0;
   const int w = inputs.options.width, h = inputs.options.height;
   if (!targets_ || targets_->width != w || targets_->height != h) {
     targets_ = std::make_unique<Targets>(w, h);
@@ -412,8 +418,11 @@ void GlBackend::begin_frame(const FrameInputs& inputs) {
   }
   for (auto& [topology, buffers] : meshes_) buffers->used = false;
   frame_meshes_.clear();
-  for (const SceneObject& object : inputs.scene.objects)
-    frame_meshes_.push_back(&mesh_buffers(object));
+  transparent_.clear();
+  for (std::uint32_t o = 0; o < inputs.scene.objects.size(); ++o) {
+    frame_meshes_.push_back(&mesh_buffers(inputs.scene.objects[o]));
+    if (inputs.plan.transparent(o)) transparent_.push_back(o);
+  }
   std::erase_if(meshes_, [](const auto& entry) { return !entry.second->used; });
   cpu_ = settings_.volumes == VolumePath::cpu;
   uploads_.resize(std::max(uploads_.size(), inputs.scene.lights.size()));
@@ -433,49 +442,61 @@ namespace {
 const GLenum kBoth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
 const GLenum kIdsOnly[] = {GL_COLOR_ATTACHMENT0, GL_NONE};
 const GLenum kColourOnly[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+const GLenum kNone[] = {GL_NONE, GL_NONE};
 }  // namespace
 
 // The opaque layer: the background, then face ids and the ambient term. The glass layer: the
-// nearest transparent surface in front of the opaque one, and its ambient term.
-void GlBackend::depth_pass(Layer layer) {
+// nearest transparent surface in front of the opaque one (ids), then its ambient term where it
+// is the one left visible (end_depth).
+void GlBackend::begin_depth(Layer layer) {
+  layer_ = layer;
+  drawn_[static_cast<int>(layer)].clear();
+  Targets& t = *targets_;
+  glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+  if (layer == Layer::glass) return;
+  const GLuint no_id = 0;
+  glClearNamedFramebufferuiv(t.scene.get(), GL_COLOR, 0, &no_id);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xFF);
+  glClearNamedFramebufferfi(t.scene.get(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(background_.get());
+  glUniform3fv(glsl::kBackgroundTop, 1, glm::value_ptr(shading::kBackgroundTop));
+  glUniform3fv(glsl::kBackgroundBottom, 1, glm::value_ptr(shading::kBackgroundBottom));
+  glUniform1i(glsl::kHeight, in_->options.height);
+  glBindVertexArray(empty_vao_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
+  const Scene& scene = in_->scene;
+  const FramePlan& plan = in_->plan;
+  const bool opaque = layer_ == Layer::opaque;
+  Targets& t = *targets_;
+  // The state each batch, as queries between batches change it.
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_GREATER);  // nearer is greater
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, opaque ? kBoth : kIdsOnly);
+  glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
+  glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
+  glUniform1i(glsl::kVisibleOnly, GL_FALSE);
+  draw_surfaces(objects, [&](std::size_t o) {
+    glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
+    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.color));
+  });
+  glDepthMask(GL_FALSE);
+  std::vector<std::uint32_t>& drawn = drawn_[static_cast<int>(layer_)];
+  drawn.insert(drawn.end(), objects.begin(), objects.end());
+}
+
+void GlBackend::end_depth() {
+  if (layer_ == Layer::opaque) return;
   const Scene& scene = in_->scene;
   const FramePlan& plan = in_->plan;
   Targets& t = *targets_;
-  auto ids_and_albedo = [&](std::size_t o) {
-    glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
-    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.color));
-  };
-  glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
-  if (layer == Layer::opaque) {
-    const GLuint no_id = 0;
-    glClearNamedFramebufferuiv(t.scene.get(), GL_COLOR, 0, &no_id);
-    glDepthMask(GL_TRUE);
-    glStencilMask(0xFF);
-    glClearNamedFramebufferfi(t.scene.get(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
-    glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
-    glDisable(GL_DEPTH_TEST);
-    glUseProgram(background_.get());
-    glUniform3fv(glsl::kBackgroundTop, 1, glm::value_ptr(shading::kBackgroundTop));
-    glUniform3fv(glsl::kBackgroundBottom, 1, glm::value_ptr(shading::kBackgroundBottom));
-    glUniform1i(glsl::kHeight, in_->options.height);
-    glBindVertexArray(empty_vao_.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    glNamedFramebufferDrawBuffers(t.scene.get(), 2, kBoth);
-    glDepthFunc(GL_GREATER);  // nearer is greater
-    glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
-    glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
-    glUniform1i(glsl::kVisibleOnly, GL_FALSE);
-    draw_surfaces(Layer::opaque, ids_and_albedo);
-    glDepthMask(GL_FALSE);
-    return;
-  }
-  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kIdsOnly);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_GREATER);
   glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
-  draw_surfaces(Layer::glass, ids_and_albedo);
-  glDepthMask(GL_FALSE);
   glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
   glDepthFunc(GL_EQUAL);
   glEnable(GL_BLEND);
@@ -483,7 +504,7 @@ void GlBackend::depth_pass(Layer layer) {
   glUniform1i(glsl::kVisibleOnly, GL_TRUE);
   glBlendFunc(GL_ONE, GL_ONE);  // colour += opacity * ambient * albedo
   glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
-  draw_surfaces(Layer::glass, [&](std::size_t o) {
+  draw_surfaces(drawn_[static_cast<int>(Layer::glass)], [&](std::size_t o) {
     const Material& material = scene.objects[o].material;
     const glm::vec3 reflected = material.opacity * material.color;
     glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
@@ -492,6 +513,48 @@ void GlBackend::depth_pass(Layer layer) {
   glUniform1i(glsl::kVisibleOnly, GL_FALSE);
   glDisable(GL_BLEND);
   glDepthFunc(GL_GREATER);
+}
+
+FrameBackend::QueryId GlBackend::issue_query(std::span<const glm::vec4> triangles,
+                                             bool surfaces_only) {
+  if (queries_used_ == queries_.size())
+    queries_.push_back(make_query(GL_ANY_SAMPLES_PASSED_CONSERVATIVE));
+  const auto id = static_cast<QueryId>(queries_used_++);
+  // A new buffer each query: immutable storage, released by the driver once drawn.
+  const Object buffer = make_buffer();
+  glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(triangles.size_bytes()),
+                       triangles.data(), 0);
+  glVertexArrayVertexBuffer(query_vao_.get(), 0, buffer.get(), 0, sizeof(glm::vec4));
+  glVertexArrayAttribFormat(query_vao_.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(query_vao_.get(), 0, 0);
+  glEnableVertexArrayAttrib(query_vao_.get(), 0);
+  Targets& t = *targets_;
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kNone);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glDepthFunc(GL_GEQUAL);  // at or in front of the stored depth
+  glUseProgram(query_.get());
+  glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(in_->plan.view_proj));
+  glUniform1i(glsl::kVisibleOnly, surfaces_only ? GL_TRUE : GL_FALSE);
+  glBindTextureUnit(2, t.ids.get());
+  glBindVertexArray(query_vao_.get());
+  glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, queries_[id].get());
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size()));
+  glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
+  glDepthFunc(GL_GREATER);
+  return id;
+}
+
+bool GlBackend::query_ready(QueryId query) {
+  GLuint ready = GL_FALSE;
+  glGetQueryObjectuiv(queries_[query].get(), GL_QUERY_RESULT_AVAILABLE, &ready);
+  return ready == GL_TRUE;
+}
+
+bool GlBackend::query_visible(QueryId query) {
+  GLuint passed = GL_FALSE;
+  glGetQueryObjectuiv(queries_[query].get(), GL_QUERY_RESULT, &passed);
+  return passed != GL_FALSE;
 }
 
 void GlBackend::read_ids(Layer layer, SurfaceLayer& out) {
@@ -871,7 +934,7 @@ void GlBackend::light_pass(std::size_t l, Layer layer) {
   glUniform1i(glsl::kLightMap, plan.has_glass());
   glUniform1f(glsl::kSpecular, shading::kSpecular);
   glUniform1f(glsl::kShininess, shading::kShininess);
-  draw_surfaces(layer, [&](std::size_t o) {
+  draw_surfaces(drawn_[static_cast<int>(layer)], [&](std::size_t o) {
     const Material& material = scene.objects[o].material;
     const glm::mat4& model = plan.objects[o].model;
     const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model))));
@@ -900,7 +963,7 @@ void GlBackend::see_through() {
   glBlendFunc(GL_ONE, GL_ONE);
   glDepthFunc(GL_GREATER);
   glUseProgram(cover_.get());
-  draw_surfaces(Layer::glass, [&](std::size_t o) {
+  draw_surfaces(transparent_, [&](std::size_t o) {
     const auto group = static_cast<std::size_t>(plan.objects[o].glass_group);
     glUniform3fv(glsl::kPerCount, 1, glm::value_ptr(plan.glass[group].log_transmittance));
   });

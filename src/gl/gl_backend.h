@@ -80,7 +80,13 @@ class GlBackend final : public FrameBackend {
   VolumeCosts measure_volume_costs() override;
 
   void begin_frame(const FrameInputs& inputs) override;
-  void depth_pass(Layer layer) override;
+  void begin_depth(Layer layer) override;
+  void draw_depth(std::span<const std::uint32_t> objects) override;
+  void end_depth() override;
+  // GL_ANY_SAMPLES_PASSED_CONSERVATIVE queries, a pool of them reused frame to frame.
+  QueryId issue_query(std::span<const glm::vec4> triangles, bool surfaces_only) override;
+  bool query_ready(QueryId query) override;
+  bool query_visible(QueryId query) override;
   void read_ids(Layer layer, SurfaceLayer& out) override;
   void volumes_ready(std::size_t light, const std::vector<std::uint8_t>& rebuilt) override;
   void begin_mask(std::size_t light) override;
@@ -109,7 +115,7 @@ class GlBackend final : public FrameBackend {
   // Draws the layer's objects with the bound program: sets each one's mvp, lets per_object(o)
   // set the rest of its uniforms.
   template <class PerObject>
-  void draw_surfaces(Layer layer, PerObject&& per_object);
+  void draw_surfaces(std::span<const std::uint32_t> objects, PerObject&& per_object);
   // Draws the volume of object o for the light into the bound target, additively or into the
   // stencil.
   void draw_volume(std::size_t light, std::size_t o, bool additive);
@@ -128,12 +134,16 @@ class GlBackend final : public FrameBackend {
   Object surface_depth_[2], surface_lit_[2];
   // The count passes' programs: [0] over the whole image, [1] with the strips' fragment test.
   Object volume_cpu_[2], volume_gpu_[2], light_map_cpu_[2], light_map_gpu_[2];
-  Object cover_, see_through_, background_, resolve_;
+  Object cover_, see_through_, background_, resolve_, query_;
   Object empty_vao_;
   Object fill_query_ = make_query(GL_SAMPLES_PASSED);
   std::unique_ptr<Targets> targets_;
   std::unordered_map<const Topology*, std::unique_ptr<MeshBuffers>> meshes_;
   std::vector<std::vector<std::unique_ptr<VolumeUpload>>> uploads_;  // [light][object]
+
+  std::vector<Object> queries_;  // the pool; the frame's are [0, queries_used_)
+  std::size_t queries_used_ = 0;
+  Object query_vao_ = make_vertex_array();
 
   // The frame being drawn.
   const FrameInputs* in_ = nullptr;
@@ -142,6 +152,10 @@ class GlBackend final : public FrameBackend {
   bool unit_weights_ = true;     // every opaque caster's CPU volume of the light has weights +-1
   bool mask_additive_ = false;   // the light's mask counts into the R32F target, not the stencil
   bool into_light_map_ = false;  // count_volume adds into the light map
+  Layer layer_ = Layer::opaque;  // of the depth pass begun
+  // Per layer, the objects its depth pass drew (what its colour and lit passes draw); and every
+  // transparent object (what is seen through).
+  std::vector<std::uint32_t> drawn_[2], transparent_;
   // Read-back scratch, kept between frames.
   std::vector<std::uint32_t> read_ids_, read_rows_;
   std::vector<float> read_counts_;

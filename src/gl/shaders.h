@@ -91,6 +91,21 @@ void main() {
 }
 )";
 
+// Occlusion queries (render/occlusion_culling.h): boxes and extruded boxes, eye-relative, drawn
+// with the depth test and no writes; with surfaces_only, only where the depth pass left a face
+// (the background's depth is 0, which a fragment at infinity would pass).
+inline constexpr const char* kQueryVertex = SHADOWVOL_GLSL_PRELUDE R"(
+layout(location = 0) in vec4 position;  // w = 0 at infinity
+void main() { gl_Position = to_clip(position); }
+)";
+inline constexpr const char* kQueryFragment = R"(#version 450 core
+layout(location = 21) uniform bool surfaces_only;
+layout(binding = 2) uniform usampler2D visible_ids;
+void main() {
+  if (surfaces_only && texelFetch(visible_ids, ivec2(gl_FragCoord.xy), 0).r == 0u) discard;
+}
+)";
+
 // One light where the count is 0: by the stencil test, or by reading the additive count target;
 // with transparent casters, times the light that passes them, exp of the log light map. Only
 // on the face the depth pass left visible: coincident faces pass the equal-depth test too.

@@ -580,13 +580,13 @@ void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangl
   for (const Counters& c : scratch.band_counters) counters += c;
 }
 
-}  // namespace
-
-void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
-                Counters& counters) {
+// The depth pass, triangle t with the id id_of(t).
+template <class IdOf>
+void depth_pass(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+                IdOf id_of) {
   prepare(target, triangles, counters);
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
-    const auto id = static_cast<std::uint32_t>(first_id + p.triangle);
+    const std::uint32_t id = id_of(p.triangle);
     float* depth = target.depth.data();
     std::uint32_t* ids = target.id.data();
     raster(
@@ -604,6 +604,42 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
           return pass;
         });
   });
+}
+
+}  // namespace
+
+void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
+                Counters& counters) {
+  depth_pass(target, triangles, counters,
+             [first_id](std::size_t t) { return static_cast<std::uint32_t>(first_id + t); });
+}
+
+void draw_depth(Target& target, std::span<const glm::vec4> triangles,
+                std::span<const std::uint32_t> ids, Counters& counters) {
+  assert(ids.size() * 3 == triangles.size());
+  depth_pass(target, triangles, counters, [ids](std::size_t t) { return ids[t]; });
+}
+
+std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthBounds bounds,
+                    Counters& counters) {
+  prepare(target, triangles, counters);
+  const std::uint64_t passed_before = counters.pixels_passed;
+  // Skips a tile only where every fragment lies behind every stored depth; the hi-z's nearest
+  // depth may be stale (older, farther) during a depth pass, which only skips less.
+  auto tile_test = [&target](int tx, int band, float, float zhi) {
+    const TileDepth& tile = target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx];
+    return TileDecision{zhi < tile.zmin ? TileVerdict::skip : TileVerdict::test, CountRule::zpass};
+  };
+  for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
+    const float* depth = target.depth.data();
+    raster(target, p.setup, band, c, nullptr, StripInPixels{}, tile_test,
+           [depth, bounds](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
+                           auto, CountRule) {
+             const Floats stored = load_row<Floats>(depth + first, lanes);
+             return covered & (z >= stored) & (stored >= bounds.zmin) & (stored <= bounds.zmax);
+           });
+  });
+  return counters.pixels_passed - passed_before;
 }
 
 CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::vec4& plane) {

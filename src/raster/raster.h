@@ -118,6 +118,10 @@ struct Counters {
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters);
 
+// The same, each triangle t with the id ids[t]: many objects' faces in one draw.
+void draw_depth(Target& target, std::span<const glm::vec4> triangles,
+                std::span<const std::uint32_t> ids, Counters& counters);
+
 // How a count pass uses the depth test (Everitt & Kilgard; GPU Gems 3 §11.2.1; Laine 2005).
 enum class CountRule {
   zpass,  // fragments in front of the stored depth: front faces add the weight, back subtract
@@ -165,6 +169,13 @@ struct DepthBounds {
   float zmin = 0.0f;
   float zmax = 1.0f;
 };
+// An occlusion query (GL_ANY_SAMPLES_PASSED): the covered pixels where a fragment of the
+// triangles lies at or in front of the stored depth, and the stored depth within `bounds`;
+// nothing is written. Both facings are drawn. The answer also goes into counters.pixels_passed.
+// Valid during a depth pass (it tests the depths drawn so far; the hi-z need not be current).
+std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthBounds bounds,
+                    Counters& counters);
+
 // The window depths clip-space triangles reach (clamped to 0 .. 1 as drawn, widened by a hair
 // for the rasterizer's rounding): a pixel whose stored depth lies outside them sees no primitive
 // on one side of it, so a closed volume's count there is 0 under either rule, the near plane's

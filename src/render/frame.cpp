@@ -48,6 +48,25 @@ Expected<Cull> parse_cull(std::string_view name) {
   return parse_name(name, {Cull::none, Cull::frustum, Cull::occlusion}, "culling");
 }
 
+std::string_view to_string(Occlusion occlusion) {
+  switch (occlusion) {
+    case Occlusion::none:
+      return "none";
+    case Occlusion::eye:
+      return "eye";
+    case Occlusion::shadows:
+      return "shadows";
+    case Occlusion::both:
+      return "both";
+  }
+  return "unknown";
+}
+
+Expected<Occlusion> parse_occlusion(std::string_view name) {
+  return parse_name(name, {Occlusion::none, Occlusion::eye, Occlusion::shadows, Occlusion::both},
+                    "occlusion culling");
+}
+
 std::string_view to_string(Clamp clamp) {
   switch (clamp) {
     case Clamp::none:
@@ -126,17 +145,19 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
 FrameStats& FrameStats::operator+=(const FrameStats& other) {
   using S = FrameStats;
   for (double S::*ms : {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback,
-                        &S::ms_cull, &S::ms_clamp})
+                        &S::ms_cull, &S::ms_clamp, &S::ms_bvh, &S::ms_occlusion})
     this->*ms += other.*ms;
   for (std::uint64_t S::*n :
        {&S::cull_queries, &S::volume_segments, &S::slice_queries, &S::clamp_pairs, &S::clamp_swaps,
-        &S::intervals_merged_by_cost, &S::fill, &S::stencil_writes})
+        &S::intervals_merged_by_cost, &S::fill, &S::stencil_writes, &S::nodes_visited, &S::queries,
+        &S::queries_waited})
     this->*n += other.*n;
   for (std::size_t S::*n : {&S::triangles, &S::volume_primitives}) this->*n += other.*n;
-  for (int S::*n :
-       {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::volumes_built,
-        &S::volumes_reused, &S::casters_culled_in_shadow, &S::casters_culled_unseen,
-        &S::light_views, &S::sub_objects_culled, &S::volumes_clamped, &S::volumes_clamped_away})
+  for (int S::*n : {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::volumes_built,
+                    &S::volumes_reused, &S::casters_culled_in_shadow, &S::casters_culled_unseen,
+                    &S::light_views, &S::sub_objects_culled, &S::volumes_clamped,
+                    &S::volumes_clamped_away, &S::bvh_rebuilt, &S::objects_culled,
+                    &S::volumes_culled, &S::objects_drawn, &S::volumes_drawn})
     this->*n += other.*n;
   for (raster::Counters S::*c : {&S::depth, &S::counts, &S::split_sampling}) this->*c += other.*c;
   for (std::vector<int> S::*per_object : {&S::zfail_lights, &S::culled_lights}) {

@@ -85,6 +85,18 @@ std::string_view to_string(Cull cull);
 inline constexpr int kMinLightView = 16, kMaxLightView = 4096;
 Expected<Cull> parse_cull(std::string_view name);
 
+// Hierarchical occlusion culling (render/occlusion_culling.h) over the scene's BVH, by
+// occlusion queries with coherence from frame to frame (Bittner et al. 2004, "CHC"). `eye`: the
+// opaque layer's depth pass drawn front to back, leaving out objects whose (grown) box the depth
+// drawn so far hides. `shadows`: per light, a volume is culled where its object's box extruded
+// away from the light (GPU Gems 3 ch. 11 §11.3.3) holds no visible surface. `both`: the two.
+// Conservative: the frame is the same as without it.
+enum class Occlusion : std::uint8_t { none, eye, shadows, both };
+std::string_view to_string(Occlusion occlusion);
+Expected<Occlusion> parse_occlusion(std::string_view name);
+inline bool culls_eye(Occlusion o) { return o == Occlusion::eye || o == Occlusion::both; }
+inline bool culls_shadows(Occlusion o) { return o == Occlusion::shadows || o == Occlusion::both; }
+
 // CC shadow volumes' clamping (Lloyd et al. 2004 §3.2; render/cc_shadow_volumes.h): volumes
 // kept only where receivers may lie. `continuous` (§3.2.1): per caster (or sub-object), the
 // intervals of depth along the light's view that hold receivers' boxes, each drawn as a segment
@@ -112,6 +124,7 @@ struct RenderOptions {
   SplitParts split_parts = SplitParts::each;
   Cull cull = Cull::none;
   Clamp clamp = Clamp::none;
+  Occlusion occlusion = Occlusion::none;
   int slices = kDefaultSlices;  // discrete clamping's strips of the image
   // The side of each light view culling and clamping test in, in pixels (a cube's faces each).
   int light_view_size = 512;
@@ -160,6 +173,17 @@ struct FrameStats {
   std::uint64_t cull_queries = 0;
   int light_views = 0;
   double ms_cull = 0;
+  // Hierarchical occlusion culling (RenderOptions::occlusion): the scene BVH's upkeep (refit, or
+  // rebuilt where refits made it costlier: bvh_rebuilt) and the shadow queries' time (the eye's
+  // queries are in ms_depth); nodes visited, queries issued and those whose answer was waited
+  // for (not ready when asked), over the eye's walk and every light's; opaque objects left out of
+  // the depth pass, and volumes culled by their extruded boxes (over all lights).
+  double ms_bvh = 0, ms_occlusion = 0;
+  int bvh_rebuilt = 0;
+  std::uint64_t nodes_visited = 0, queries = 0, queries_waited = 0;
+  int objects_culled = 0, volumes_culled = 0;
+  // Objects drawn in the opaque depth pass, and volumes counted (over all lights).
+  int objects_drawn = 0, volumes_drawn = 0;
   // Sub-objects (CC §3, §3.3), over all lights: culled apart from the rest of their object.
   int sub_objects_culled = 0;
   // Clamping (RenderOptions::clamp), over all lights: the time it took (the light views' depths

@@ -13,8 +13,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "core/expected.h"
 #include "render/frame.h"
@@ -63,8 +66,23 @@ class FrameBackend {
   // Sizes the targets for the frame and takes its inputs.
   virtual void begin_frame(const FrameInputs& inputs) = 0;
   // Depth pass from the eye: the layer's surfaces into the depth target, each pixel's face id
-  // with them (the glass layer over the opaque layer's depths, without clearing them).
-  virtual void depth_pass(Layer layer) = 0;
+  // with them (the glass layer over the opaque layer's depths, without clearing them), drawn in
+  // batches: begin_depth, then draw_depth of some objects of the layer, each batch in one draw
+  // (any objects, any order, each at most once), then end_depth, after which the target is
+  // complete. Occlusion queries may come between the batches.
+  virtual void begin_depth(Layer layer) = 0;
+  virtual void draw_depth(std::span<const std::uint32_t> objects) = 0;
+  virtual void end_depth() = 0;
+
+  // Occlusion queries (GL_ANY_SAMPLES_PASSED): whether any pixel of `triangles` (eye-relative,
+  // homogeneous, 3 vertices each, both facings) lies at or in front of the depth target as it
+  // stands, without writing anything; where `surfaces_only`, only at pixels that show a surface.
+  // Answered now or later (query_ready); query_visible waits for the answer. Queries live until
+  // the next begin_frame.
+  using QueryId = std::uint32_t;
+  virtual QueryId issue_query(std::span<const glm::vec4> triangles, bool surfaces_only) = 0;
+  virtual bool query_ready(QueryId query) = 0;
+  virtual bool query_visible(QueryId query) = 0;
   // The layer's object and face per pixel, from the depth pass's ids.
   virtual void read_ids(Layer layer, SurfaceLayer& out) = 0;
   // The CPU volumes of `light` are current; rebuilt[o] is 1 where object o's changed.

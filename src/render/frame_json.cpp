@@ -14,6 +14,7 @@ nlohmann::json to_json(const RenderOptions& options) {
           {"split_parts", std::string(to_string(options.split_parts))},
           {"cull", std::string(to_string(options.cull))},
           {"clamp", std::string(to_string(options.clamp))},
+          {"occlusion", std::string(to_string(options.occlusion))},
           {"slices", options.slices},
           {"light_view_size", options.light_view_size}};
 }
@@ -43,6 +44,21 @@ nlohmann::json cc_json(const FrameStats& s, int per, bool fill) {
     out["r_ms_per_pixel"] = s.volume_costs.ms_per_pixel;
   }
   return out;
+}
+
+nlohmann::json occlusion_json(const FrameStats& s, int per) {
+  auto each = [per](double total) { return total / per; };
+  return {"occlusion",
+          {{"nodes_visited", each(static_cast<double>(s.nodes_visited))},
+           {"queries", each(static_cast<double>(s.queries))},
+           {"queries_waited", each(static_cast<double>(s.queries_waited))},
+           {"objects_culled", each(s.objects_culled)},
+           {"volumes_culled", each(s.volumes_culled)},
+           {"objects_drawn", each(s.objects_drawn)},
+           {"volumes_drawn", each(s.volumes_drawn)},
+           {"bvh_rebuilt", each(s.bvh_rebuilt)},
+           {"bvh_ms", each(s.ms_bvh)},
+           {"shadow_queries_ms", each(s.ms_occlusion)}}};
 }
 
 nlohmann::json to_json(const raster::Counters& c, std::uint64_t per) {

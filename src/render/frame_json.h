@@ -10,8 +10,8 @@
 
 namespace shadowvol {
 
-// width, height, method, generator, extrusion, split_planes, split_parts, cull, clamp, slices
-// and light_view_size, by name.
+// width, height, method, generator, extrusion, split_planes, split_parts, cull, clamp,
+// occlusion, slices and light_view_size, by name.
 nlohmann::json to_json(const RenderOptions& options);
 // The rasterizer's work: triangles, tiles_touched, tiles_skipped, pixels_processed and
 // count_updates, each divided by `per` (the frames they were added over).
@@ -23,5 +23,9 @@ nlohmann::json to_json(const raster::Counters& counters, std::uint64_t per = 1);
 // RenderOptions::count_fill must have asked for); v_ms_per_vertex and r_ms_per_pixel where the
 // backend measured them.
 nlohmann::json cc_json(const FrameStats& stats, int per = 1, bool fill = true);
+// Hierarchical occlusion culling's figures, each divided by `per`, as the object under the key
+// "occlusion": nodes_visited, queries, queries_waited, objects_culled, volumes_culled,
+// objects_drawn, volumes_drawn, bvh_rebuilt, bvh_ms and shadow_queries_ms.
+nlohmann::json occlusion_json(const FrameStats& stats, int per = 1);
 
 }  // namespace shadowvol

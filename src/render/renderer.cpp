@@ -82,14 +82,27 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   backend_->begin_frame(in);
   // A layer: its depth pass over the depth target as it stands, its ids, then per light its
   // shadows and light.
+  const bool occlusion = options.occlusion != Occlusion::none;
+  if (occlusion) occlusion_.begin_frame(plan_, stats);
   auto draw_layer = [&](Layer layer, SurfaceLayer& out) {
-    timed(*backend_, stats.ms_depth, [&] { backend_->depth_pass(layer); });
+    const bool opaque = layer == Layer::opaque;
+    timed(*backend_, stats.ms_depth, [&] {
+      if (opaque && culls_eye(options.occlusion))
+        return occlusion_.depth_pass(plan_, *backend_, stats);
+      all_.clear();
+      for (std::uint32_t o = 0; o < scene.objects.size(); ++o)
+        if (plan_.transparent(o) != opaque) all_.push_back(o);
+      backend_->begin_depth(layer);
+      backend_->draw_depth(all_);
+      backend_->end_depth();
+      if (opaque) stats.objects_drawn += static_cast<int>(all_.size());
+    });
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
-      if (plan_.transparent(o) == (layer == Layer::glass))
+      if (plan_.transparent(o) != opaque &&
+          !(opaque && culls_eye(options.occlusion) && !occlusion_.drawn()[o]))
         stats.triangles += scene.objects[o].mesh->triangle_count();
     // Culling by occlusion and discrete clamping take the opaque layer's ids (their visible
     // samples) even for a frame shown on the device.
-    const bool opaque = layer == Layer::opaque;
     const bool ids = opaque && CcShadowVolumes::needs_ids(options);
     if (read_back || ids) {
       timed(*backend_, stats.ms_readback, [&] { backend_->read_ids(layer, out); });
@@ -99,6 +112,13 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
       backend_->finish();
       cc_.apply(scene, options, plan_, ids ? &out : nullptr, costs_, backend_->counts_cpu_volumes(),
                 stats);
+    }
+    // The shadow volumes' hierarchical culling, on the finished opaque depth: where transparent
+    // casters are drawn later, a surface of theirs may receive in front of the background.
+    if (opaque && culls_shadows(options.occlusion)) {
+      backend_->finish();
+      for (std::size_t l = 0; l < lights; ++l)
+        occlusion_.cull_volumes(plan_, l, *backend_, !glass, stats);
     }
     for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out, read_back);
   };
@@ -131,6 +151,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     const VolumePlan& v = plan_.volume(l, o);
     if (v.culled) return;
     stats.volume_segments += v.segments();
+    ++stats.volumes_drawn;
     if (cpu) stats.volume_primitives += volumes_.volume(l, o).primitive_count();
     backend_->count_volume(l, o);
   };

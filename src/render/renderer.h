@@ -2,13 +2,15 @@
 //
 // Owns: the sequence of a frame and what it keeps between frames (the plan's storage, the CPU
 // volume cache, the backend's measured volume costs). Per frame: the plan (render/frame_plan.h);
-// the opaque layer's depth pass; CC shadow volumes' culling of casters whose volumes change no
-// pixel and clamping of the rest to where receivers lie (render/cc_shadow_volumes.h); per
-// light its volumes, the opaque casters' counts (the shadow mask), the transparent casters'
-// light intensity map group by group, and the lit pass; with transparent casters, what is seen
-// through them and the glass layer, lit the same way; the colour; read-back. Each step is a verb
-// of a FrameBackend (render/frame_backend.h): the software rasterizer (soft/) or OpenGL (gl/);
-// backend/backend.h makes one by name.
+// the opaque layer's depth pass (front to back by hierarchical occlusion culling, where asked:
+// render/occlusion_culling.h); CC shadow volumes' culling of casters whose volumes change no
+// pixel and clamping of the rest to where receivers lie (render/cc_shadow_volumes.h); the
+// volumes whose extruded boxes show nothing culled (occlusion_culling.h again); per light its
+// volumes, the opaque casters' counts (the shadow mask), the transparent casters' light intensity
+// map group by group, and the lit pass; with transparent casters, what is seen through them and the
+// glass layer, lit the same way; the colour; read-back. Each step is a verb of a FrameBackend
+// (render/frame_backend.h): the software rasterizer (soft/) or OpenGL (gl/); backend/backend.h
+// makes one by name.
 //
 // Papers: Intel "mainstream shadow volumes" and GPU Gems 3 ch. 11 (the passes of a frame),
 // Kim, Kim & Turk 2008 (transparent casters: the light map and the glass layer).
@@ -22,6 +24,7 @@
 #include "render/frame.h"
 #include "render/frame_backend.h"
 #include "render/frame_plan.h"
+#include "render/occlusion_culling.h"
 #include "render/volume_cache.h"
 #include "scene/scene.h"
 
@@ -54,6 +57,8 @@ class Renderer {
   std::unique_ptr<FrameBackend> backend_;
   FramePlan plan_;
   CcShadowVolumes cc_;
+  OcclusionCulling occlusion_;
+  std::vector<std::uint32_t> all_;  // a layer's objects, for a depth pass drawn whole
   VolumeCosts costs_;  // measured on the backend at the first frame that clamps continuously
   VolumeCache volumes_;
   std::vector<std::uint8_t> none_rebuilt_;  // for a backend that builds its own volumes

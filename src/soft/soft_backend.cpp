@@ -4,6 +4,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <span>
 #include <tuple>
@@ -76,6 +77,7 @@ void SoftBackend::Grouped::group(std::span<const glm::vec4> triangles,
 
 void SoftBackend::begin_frame(const FrameInputs& inputs) {
   in_ = &inputs;
+  answers_.clear();
   const RenderOptions& options = inputs.options;
   const int w = options.width, h = options.height;
   if (target_.width != w || target_.height != h) target_ = raster::Target(w, h);
@@ -90,17 +92,41 @@ void SoftBackend::begin_frame(const FrameInputs& inputs) {
     share.assign(target_.tile_work.size(), raster::TileWork{});
 }
 
-void SoftBackend::depth_pass(Layer layer) {
-  const Scene& scene = in_->scene;
-  const FramePlan& plan = in_->plan;
+void SoftBackend::begin_depth(Layer layer) {
+  layer_ = layer;
   if (layer == Layer::opaque) target_.clear_depth();
   std::fill(target_.id.begin(), target_.id.end(), raster::Target::kNoId);
-  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-    if (plan.transparent(o) != (layer == Layer::glass)) continue;
-    clip_triangles(scene.objects[o], plan.view_proj * plan.objects[o].model, tris_);
-    raster::draw_depth(target_, tris_, plan.objects[o].first_id, in_->frame.stats.depth);
+}
+
+void SoftBackend::draw_depth(std::span<const std::uint32_t> objects) {
+  const Scene& scene = in_->scene;
+  const FramePlan& plan = in_->plan;
+  tris_.clear();
+  ids_.clear();
+  for (const std::uint32_t o : objects) {
+    assert(plan.transparent(o) == (layer_ == Layer::glass));
+    const SceneObject& object = scene.objects[o];
+    const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
+    for (const std::uint32_t i : object.mesh->indices)
+      tris_.push_back(mvp * glm::vec4(object.mesh->positions[i], 1.0f));
+    const std::uint32_t first = plan.objects[o].first_id;
+    for (std::uint32_t f = 0; f < object.mesh->triangle_count(); ++f) ids_.push_back(first + f);
   }
-  target_.update_tile_depth();
+  raster::draw_depth(target_, tris_, ids_, in_->frame.stats.depth);
+}
+
+void SoftBackend::end_depth() { target_.update_tile_depth(); }
+
+FrameBackend::QueryId SoftBackend::issue_query(std::span<const glm::vec4> triangles,
+                                               bool surfaces_only) {
+  tris_.clear();
+  for (const glm::vec4& v : triangles) tris_.push_back(in_->plan.view_proj * v);
+  // A stored depth of exactly 0 is the background (infinity): no surface.
+  const raster::DepthBounds bounds{surfaces_only ? std::numeric_limits<float>::denorm_min() : 0.0f,
+                                   1.0f};
+  raster::Counters counters;
+  answers_.push_back(raster::query(target_, tris_, bounds, counters) > 0);
+  return static_cast<QueryId>(answers_.size() - 1);
 }
 
 void SoftBackend::read_ids(Layer, SurfaceLayer& out) {

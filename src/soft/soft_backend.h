@@ -39,7 +39,12 @@ class SoftBackend final : public FrameBackend {
   VolumeCosts measure_volume_costs() override;
 
   void begin_frame(const FrameInputs& inputs) override;
-  void depth_pass(Layer layer) override;
+  void begin_depth(Layer layer) override;
+  void draw_depth(std::span<const std::uint32_t> objects) override;
+  void end_depth() override;
+  QueryId issue_query(std::span<const glm::vec4> triangles, bool surfaces_only) override;
+  bool query_ready(QueryId) override { return true; }  // answered when issued
+  bool query_visible(QueryId query) override { return answers_[query] != 0; }
   void read_ids(Layer layer, SurfaceLayer& out) override;
   void volumes_ready(std::size_t, const std::vector<std::uint8_t>&) override {}
   void begin_mask(std::size_t) override {}  // counts are zero after each read
@@ -83,6 +88,9 @@ class SoftBackend final : public FrameBackend {
   // whether only z-fail counts it) and the triangles grouped by it.
   std::vector<glm::vec4> tris_, prefill_tris_;
   std::vector<std::int32_t> weights_, prefill_weights_;
+  std::vector<std::uint32_t> ids_;     // a depth batch's id per triangle
+  std::vector<std::uint8_t> answers_;  // per query of the frame: visible
+  Layer layer_ = Layer::opaque;        // of the depth pass begun
   std::vector<std::uint32_t> keys_, prefill_keys_;
   Grouped volume_groups_, prefill_groups_;
   std::vector<glm::vec3> log_light_, eye_log_;

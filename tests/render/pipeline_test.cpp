@@ -26,7 +26,12 @@ class RecordingBackend final : public FrameBackend {
     return {1e-6, 1e-6};
   }
   void begin_frame(const FrameInputs&) override { log("begin_frame"); }
-  void depth_pass(Layer layer) override { log("depth " + name(layer)); }
+  void begin_depth(Layer layer) override { log("depth " + name(layer)); }
+  void draw_depth(std::span<const std::uint32_t>) override {}
+  void end_depth() override {}
+  QueryId issue_query(std::span<const glm::vec4>, bool) override { return 0; }
+  bool query_ready(QueryId) override { return true; }
+  bool query_visible(QueryId) override { return true; }
   void read_ids(Layer layer, SurfaceLayer& out) override {
     out.object.assign(1, -1);
     log("ids " + name(layer));
