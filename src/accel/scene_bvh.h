@@ -38,7 +38,8 @@ class SceneBvh {
     std::uint32_t count = 0;  // a leaf: its items (at least 1); an inner node: 0
     bool leaf() const { return count > 0; }
   };
-  static constexpr std::size_t kMaxLeafItems = 4;
+  // One object a leaf: occlusion culling culls a leaf only where all of it is hidden.
+  static constexpr std::size_t kMaxLeafItems = 1;
   static constexpr double kRebuildFactor = 1.5;
 
   // Builds over `boxes` (one per item). Items with an empty box (lo > hi: an object without

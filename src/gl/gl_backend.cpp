@@ -454,6 +454,8 @@ void GlBackend::begin_depth(Layer layer) {
   Targets& t = *targets_;
   glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
   if (layer == Layer::glass) return;
+  // The clear takes draw buffer 0 as the draw buffers stand: attachment 0 must be among them.
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kBoth);
   const GLuint no_id = 0;
   glClearNamedFramebufferuiv(t.scene.get(), GL_COLOR, 0, &no_id);
   glDepthMask(GL_TRUE);

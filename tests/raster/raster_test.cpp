@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <glm/ext/matrix_transform.hpp>
@@ -534,6 +535,57 @@ TEST(Raster, TheDepthsTrianglesReachBoundTheirCountsAndGiveUpBehindTheEye) {
   EXPECT_EQ(reached_depths(behind_eye).zmax, 1.0f);
   // Nothing drawn: an empty range.
   EXPECT_GT(reached_depths({}).zmin, reached_depths({}).zmax);
+}
+
+}  // namespace
+}  // namespace shadowvol::raster
+
+namespace shadowvol::raster {
+namespace {
+
+// An occlusion query passes where a fragment lies at or in front of the stored depth, writes
+// nothing, and with bounds above 0 ignores the background (depth 0: no surface).
+TEST(Query, PassesAtOrInFrontOfTheStoredDepthAndWritesNothing) {
+  Target target(16, 16);
+  target.clear_depth();
+  auto screen = [](float z) {
+    return std::vector<glm::vec4>{{-1, -1, z, 1}, {3, -1, z, 1}, {-1, 3, z, 1}};
+  };
+  const DepthBounds surfaces{std::numeric_limits<float>::denorm_min(), 1.0f};
+  Counters c;
+  EXPECT_EQ(query(target, screen(0.3f), {}, c), 256u);  // over the background
+  EXPECT_EQ(query(target, screen(0.3f), surfaces, c), 0u);
+  draw_depth(target, screen(0.5f), 0, c);
+  target.update_tile_depth();
+  const std::vector<float> depth = target.depth;
+  EXPECT_EQ(query(target, screen(0.4f), surfaces, c), 0u);    // behind
+  EXPECT_EQ(query(target, screen(0.5f), surfaces, c), 256u);  // at
+  EXPECT_EQ(query(target, screen(0.6f), surfaces, c), 256u);  // in front
+  EXPECT_EQ(target.depth, depth);
+  // A quarter of the image in front: its pixels only.
+  const std::vector<glm::vec4> corner{{-1, -1, 0.9f, 1}, {0, -1, 0.9f, 1}, {-1, 0, 0.9f, 1},
+                                      {0, -1, 0.9f, 1},  {0, 0, 0.9f, 1},  {-1, 0, 0.9f, 1}};
+  EXPECT_EQ(query(target, corner, surfaces, c), 64u);
+}
+
+// A depth pass of several objects' triangles in one draw, each with its own id, leaves what
+// drawing them one by one leaves.
+TEST(DepthPass, OneDrawWithAnIdPerTriangleIsTheSameAsOneDrawPerObject) {
+  const std::vector<glm::vec4> a{{-1, -1, 0.2f, 1}, {1, -1, 0.7f, 1}, {-1, 1, 0.4f, 1}};
+  const std::vector<glm::vec4> b{{1, 1, 0.6f, 1}, {-1, 1, 0.3f, 1}, {1, -1, 0.2f, 1}};
+  Target apart(32, 24), together(32, 24);
+  Counters c;
+  apart.clear_depth();
+  together.clear_depth();
+  draw_depth(apart, a, 10, c);
+  draw_depth(apart, b, 20, c);
+  std::vector<glm::vec4> both = a;
+  both.insert(both.end(), b.begin(), b.end());
+  const std::vector<std::uint32_t> ids{10, 20};
+  draw_depth(together, both, ids, c);
+  EXPECT_EQ(together.depth, apart.depth);
+  EXPECT_EQ(together.id, apart.id);
+  EXPECT_NE(std::count(together.id.begin(), together.id.end(), 20u), 0);
 }
 
 }  // namespace
