@@ -6,6 +6,9 @@
 // volume primitive), the tiles not culled, the pixels processed and the pixels updated (count
 // changes), and the count passes' time.
 //
+// city: hierarchical occlusion culling (GPU Gems 3 ch. 11 §11.3.3) on the built-in city at four
+// sizes, its street and above paths, without culling and with --occlusion both.
+//
 // cc: CC shadow volumes' measurement (Lloyd et al. 2004 §4, Fig. 7 to 9). The corridor and the
 // robots over their paths with standard volumes (sv), culling only (cull), and culling with
 // continuous (ccc), discrete (ccd) and both clampings (cc): per frame the fill (pixels the
@@ -75,6 +78,21 @@ struct CcSuiteOptions {
   int light_view_size = 512;
   std::string json, csv, plot;  // as SuiteOptions's
 };
+
+struct CitySuiteOptions {
+  int frames = 8;
+  int width = 1280, height = 720;
+  Method method = Method::automatic;
+  Backend backend = Backend::soft;
+  gl::GlSettings gl;
+  std::vector<int> sizes = {1000, 2500, 5000, 10000};  // buildings, smallest first
+  std::string json, csv, plot;                         // as SuiteOptions's
+};
+
+// Runs `bench --suite city`: per city size and path (street, above), without and with occlusion
+// culling (both): fill, frame time, shadow-volume time, objects and volumes drawn; the goals and
+// the scaling. Returns the process's exit status.
+int run_city_suite(const CitySuiteOptions& options);
 
 // Runs `bench --suite cc`: prints the table of totals, the ratios against the goals and the slice
 // sweep, writes the files. Returns the process's exit status.

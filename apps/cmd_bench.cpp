@@ -16,6 +16,7 @@
 #include "cli.h"
 #include "render/frame_json.h"
 #include "render/frame_timing.h"
+#include "scene/city.h"
 
 namespace shadowvol::cli {
 namespace {
@@ -25,6 +26,7 @@ struct BenchArgs {
   std::vector<std::string> scenes;
   int frames = 10;
   std::string json_file, suite, csv, plot;
+  std::vector<int> city_sizes;
   CLI::App* cmd = nullptr;
   CLI::Option* json = nullptr;
   bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
@@ -180,12 +182,51 @@ int cc_suite(const BenchArgs& args) {
   return run_cc_suite(suite);
 }
 
+// `bench --suite city`: the size, method, frames and backend as given, else the suite's own.
+int city_suite(const BenchArgs& args) {
+  if (auto ok = refuse_options_not_taken(
+          args, {"--method", "--backend", "--volumes", "--counts", "--city-sizes"});
+      !ok)
+    return fail(ok.error().message);
+  CitySuiteOptions suite;
+  suite.json = args.json_file;
+  suite.csv = args.csv;
+  suite.plot = args.plot;
+  if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
+  if (args.given("--frames")) suite.frames = args.frames;
+  if (auto ok = suite_size(args, suite.width, suite.height); !ok) return fail(ok.error().message);
+  auto method = parse_method(args.frame.method);
+  if (!method) return fail("--method: " + method.error().message);
+  suite.method = *method;
+  auto backend = parse_backend(args.frame.backend);
+  if (!backend) return fail("--backend: " + backend.error().message);
+  suite.backend = *backend;
+  auto volumes = gl::parse_volume_path(args.frame.volumes);
+  if (!volumes) return fail("--volumes: " + volumes.error().message);
+  auto counts = gl::parse_count_target(args.frame.counts);
+  if (!counts) return fail("--counts: " + counts.error().message);
+  suite.gl = {*volumes, *counts};
+  if (!args.city_sizes.empty()) {
+    if (args.city_sizes.size() < 2) return fail("--city-sizes: give at least two sizes");
+    for (const int b : args.city_sizes)
+      if (b < 1 || b > kMaxCityBuildings)
+        return fail("--city-sizes: " + std::to_string(b) + " is outside 1 .. " +
+                    std::to_string(kMaxCityBuildings));
+    if (!std::is_sorted(args.city_sizes.begin(), args.city_sizes.end()))
+      return fail("--city-sizes: give the sizes smallest first");
+    suite.sizes = args.city_sizes;
+  }
+  return run_city_suite(suite);
+}
+
 int suite(const BenchArgs& args) {
   if (args.suite.empty())
-    return fail(std::string(args.csv.empty() ? "--plot" : "--csv") + " needs --suite spsv or cc");
+    return fail(std::string(args.csv.empty() ? "--plot" : "--csv") +
+                " needs --suite spsv, cc or city");
   if (args.suite == "cc") return cc_suite(args);
+  if (args.suite == "city") return city_suite(args);
   if (args.suite != "spsv")
-    return fail("--suite: unknown suite '" + args.suite + "': expected spsv or cc");
+    return fail("--suite: unknown suite '" + args.suite + "': expected spsv, cc or city");
   if (auto ok = refuse_options_not_taken(args, {"--extrusion"}); !ok)
     return fail(ok.error().message);
   SuiteOptions suite{args.frames, 1024, 768, args.json_file, args.csv, args.plot};
@@ -200,6 +241,8 @@ int suite(const BenchArgs& args) {
 }
 
 int run(const BenchArgs& args) {
+  if (args.given("--city-sizes") && args.suite != "city")
+    return fail("--city-sizes needs --suite city");
   if (!args.suite.empty() || !args.csv.empty() || !args.plot.empty()) return suite(args);
   if (!args.json_file.empty())
     return fail("--json " + args.json_file + ": a file is for --suite; without it --json prints");
@@ -224,13 +267,21 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                                "Print one JSON array (with --suite: write the suite's JSON to "
                                "this file, - for standard output)")
                    ->expected(0, 1);
-  cmd->add_option("--suite", args->suite,
-                  "Run a measurement suite instead: spsv (Laine 2005's counters over the animated "
-                  "knight, knights16, tree and tree-decomposed, with zp+db, zf+db, spsv, "
-                  "spsv-laine and spsv-whole; 1024x768 unless --size) or cc (CC shadow volumes' "
-                  "fill, stencil writes and shadow-volume time over the corridor's and the "
-                  "robots' paths, with sv, cull, ccc, ccd and cc, and the slice sweep; "
-                  "1280x1024 and 48 frames unless --size and --frames; --method, --backend)");
+  cmd->add_option(
+      "--suite", args->suite,
+      "Run a measurement suite instead: spsv (Laine 2005's counters over the animated "
+      "knight, knights16, tree and tree-decomposed, with zp+db, zf+db, spsv, "
+      "spsv-laine and spsv-whole; 1024x768 unless --size) or cc (CC shadow volumes' "
+      "fill, stencil writes and shadow-volume time over the corridor's and the "
+      "robots' paths, with sv, cull, ccc, ccd and cc, and the slice sweep; "
+      "1280x1024 and 48 frames unless --size and --frames; --method, --backend) or city "
+      "(occlusion culling on the city of 1,000 to 10,000 buildings, street and above, "
+      "none and --occlusion both: fill, frame and shadow-volume time, objects and "
+      "volumes drawn, the scaling; 1280x720 and 8 frames unless --size, --frames, "
+      "--city-sizes; --method, --backend)");
+  cmd->add_option("--city-sizes", args->city_sizes,
+                  "With --suite city: the city sizes in buildings, smallest first (default "
+                  "1000 2500 5000 10000)");
   cmd->add_option("--csv", args->csv,
                   "With --suite: write one row per scene, method and frame to this file");
   cmd->add_option("--plot", args->plot,

@@ -49,14 +49,34 @@ void box_query_triangles(const glm::vec3& lo, const glm::vec3& hi, std::vector<g
 void shadow_query_triangles(const glm::vec3& lo, const glm::vec3& hi, const glm::vec4& light,
                             std::vector<glm::vec4>& out) {
   const std::array<glm::vec4, 8> c = grown_corners(lo, hi);
-  for (const auto& f : kFaces) add_quad(c[f[0]], c[f[1]], c[f[2]], c[f[3]], out);
   const bool point = light.w != 0.0f;
   const glm::vec3 l = point ? glm::vec3(light) / light.w : glm::vec3(light);
+  // A face faces the light where the light lies on its outer side or in its plane (kFaces: -z,
+  // +z, -y, +y, -x, +x).
+  bool facing[6];
+  for (int f = 0; f < 6; ++f) {
+    const int axis = 2 - f / 2;
+    const float side = f % 2 ? 1.0f : -1.0f;
+    const float plane = (f % 2 ? c[7] : c[0])[axis];
+    facing[f] = side * (point ? l[axis] - plane : l[axis]) >= 0.0f;
+  }
+  auto face_of = [](int axis, bool high) { return 2 * (2 - axis) + (high ? 1 : 0); };
+  for (int f = 0; f < 6; ++f)
+    if (facing[f])
+      add_quad(c[kFaces[f][0]], c[kFaces[f][1]], c[kFaces[f][2]], c[kFaces[f][3]], out);
   auto at_infinity = [&](const glm::vec4& p) {
     return glm::vec4(point ? glm::vec3(p) - l : -l, 0.0f);
   };
-  for (const auto& e : kEdges)
+  // The silhouette: edges between a face toward the light and one away from it.
+  for (const auto& e : kEdges) {
+    const int axis = e[0] ^ e[1];  // the bit the edge runs along: 1 x, 2 y, 4 z
+    const int along = axis == 1 ? 0 : axis == 2 ? 1 : 2;
+    int faces[2], n = 0;
+    for (int k = 0; k < 3; ++k)
+      if (k != along) faces[n++] = face_of(k, (e[0] >> k) & 1);
+    if (facing[faces[0]] == facing[faces[1]]) continue;
     add_quad(c[e[0]], c[e[1]], at_infinity(c[e[1]]), at_infinity(c[e[0]]), out);
+  }
 }
 
 bool box_outside_frustum(const glm::vec3& lo, const glm::vec3& hi, const glm::mat4& view_proj) {

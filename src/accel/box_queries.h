@@ -30,10 +30,10 @@ float query_margin(const glm::vec3& lo, const glm::vec3& hi);
 // The box [lo, hi], grown by query_margin: 12 triangles, 3 vertices each (w = 1).
 void box_query_triangles(const glm::vec3& lo, const glm::vec3& hi, std::vector<glm::vec4>& out);
 // The shadow volume of the box [lo, hi], grown by query_margin, from `light` (homogeneous; w = 0
-// directional): the box's 12 triangles and, for each of its 12 edges, the quad from the edge to
-// its image at infinity away from the light (w = 0): 36 triangles. The region they bound holds
-// every point whose segment to the light meets the box; drawn whole, they over-cover its
-// boundary (the far cap lies at infinity, depth 0, where no stored surface is).
+// directional): the box's faces toward the light (or edge-on to it) and, for each edge between
+// such a face and one away from it (the silhouette), the quad from the edge to its image at
+// infinity away from the light (w = 0). They bound the region of every point whose segment to
+// the light meets the box (the far cap lies at infinity, depth 0, where no stored surface is).
 void shadow_query_triangles(const glm::vec3& lo, const glm::vec3& hi, const glm::vec4& light,
                             std::vector<glm::vec4>& out);
 

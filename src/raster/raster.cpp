@@ -672,9 +672,13 @@ DepthBounds reached_depths(std::span<const glm::vec4> triangles) {
   return {std::max(0.0f, b.zmin - kSlack), std::min(1.0f, b.zmax + kSlack)};
 }
 
-void draw_counts(Target& target, std::span<const glm::vec4> triangles,
-                 std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
-                 DepthBounds bounds, const SplitPlane& split, const ScreenStrip& strip) {
+namespace {
+
+// A count pass, triangle t within the depth bounds bounds_of(t).
+template <class BoundsOf>
+void count_pass(Target& target, std::span<const glm::vec4> triangles,
+                std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
+                BoundsOf bounds_of, const SplitPlane& split, const ScreenStrip& strip) {
   assert(weights.size() * 3 == triangles.size());
   assert(target.tile_work.empty() ||
          target.tile_work.size() == static_cast<std::size_t>(target.tiles_x) * target.tiles_y);
@@ -684,7 +688,8 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   // one. It is accepted whole when every fragment passes against every stored depth, within the
   // bounds. The split plane's pick comes first: a draw limited to the other rule's tiles skips
   // the tile, and the split rule takes the pick as the tile's rule. A pre-fill takes every tile.
-  auto tile_test = [&target, rule, bounds, &split](int tx, int band, float zlo, float zhi) {
+  auto tile_test = [&target, rule, &split](const DepthBounds& bounds, int tx, int band, float zlo,
+                                           float zhi) {
     const TileDepth& tile = target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx];
     CountRule tile_rule = rule;
     if (rule == CountRule::split || split.tiles != SplitTiles::all) {
@@ -720,11 +725,15 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
     if (front_delta == 0) return;
     const float* depth = target.depth.data();
     std::int32_t* count = target.count.data();
+    const DepthBounds bounds = bounds_of(p.triangle);
     TileWork* work = target.tile_work.empty()
                          ? nullptr
                          : &target.tile_work[static_cast<std::size_t>(band) * target.tiles_x];
     raster(
-        target, p.setup, band, c, work, strip_in_pixels, tile_test,
+        target, p.setup, band, c, work, strip_in_pixels,
+        [&tile_test, &bounds](int tx, int band, float zlo, float zhi) {
+          return tile_test(bounds, tx, band, zlo, zhi);
+        },
         // By value: the stores into count may alias anything an int32 reference names.
         [depth, count, bounds, front_delta](std::size_t first, const Mask& covered, const Floats& z,
                                             auto lanes, auto checks, CountRule tile_rule) {
@@ -748,6 +757,24 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
   });
   if (rule != CountRule::fill)
     counters.count_updates += counters.pixels_passed - passed_before;  // every pass writes
+}
+
+}  // namespace
+
+void draw_counts(Target& target, std::span<const glm::vec4> triangles,
+                 std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
+                 DepthBounds bounds, const SplitPlane& split, const ScreenStrip& strip) {
+  count_pass(
+      target, triangles, weights, rule, counters, [bounds](std::size_t) { return bounds; }, split,
+      strip);
+}
+
+void draw_counts(Target& target, std::span<const glm::vec4> triangles,
+                 std::span<const std::int32_t> weights, std::span<const DepthBounds> bounds,
+                 CountRule rule, Counters& counters) {
+  assert(bounds.size() == weights.size());
+  count_pass(target, triangles, weights, rule, counters,
+             [bounds](std::size_t t) { return bounds[t]; }, {}, {});
 }
 
 }  // namespace shadowvol::raster

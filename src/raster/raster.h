@@ -206,4 +206,10 @@ void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  DepthBounds bounds = {}, const SplitPlane& split = {},
                  const ScreenStrip& strip = {});
 
+// The same over the whole image, each triangle t within its own depth bounds bounds[t]: many
+// volumes counted by one rule in one draw, each kept to its own bounds.
+void draw_counts(Target& target, std::span<const glm::vec4> triangles,
+                 std::span<const std::int32_t> weights, std::span<const DepthBounds> bounds,
+                 CountRule rule, Counters& counters);
+
 }  // namespace shadowvol::raster

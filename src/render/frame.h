@@ -159,6 +159,9 @@ struct FrameStats {
   double ms_depth = 0, ms_volumes = 0, ms_counts = 0, ms_shade = 0;
   // Taking what the frame shows into Frame: ids, masks, light and image (the read-back verbs).
   double ms_readback = 0;
+  // Measuring for the stats what is not the frame's work (RenderOptions::count_fill's passes,
+  // tile work shared out by object), taken off the stage it happened in.
+  double ms_measuring = 0;
   std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
   std::size_t volume_primitives = 0;          // over all lights
   int objects_zpass = 0, objects_zfail = 0;   // over all lights

@@ -95,6 +95,11 @@ class FrameBackend {
   virtual void begin_light_map(std::size_t light) = 0;
   // Counts the volume of `object` for `light` into the current target by its VolumePlan.
   virtual void count_volume(std::size_t light, std::size_t object) = 0;
+  // Counts the volumes of `objects` (none culled) for `light`, each by its own VolumePlan (rule,
+  // caps, depth bounds), in as few draws as the backend can: the counts of count_volume of each.
+  virtual void count_volumes(std::size_t light, std::span<const std::uint32_t> objects) {
+    for (const std::uint32_t o : objects) count_volume(light, o);
+  }
   // Into the light map: the counts of group g's volumes times its log transmittance.
   virtual void end_group(std::size_t group) = 0;
   // The current count target (mask or light map) has all its counts.

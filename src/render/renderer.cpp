@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <chrono>
+#include <ranges>
 #include <utility>
 
 #include "render/volume_overlay.h"
@@ -147,19 +148,24 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     const bool built = cpu || in.options.show_volumes;
     backend_->volumes_ready(l, built ? volumes_.update(in.scene, plan_, l, stats) : none_rebuilt_);
   });
-  auto count = [&](std::size_t o) {
-    const VolumePlan& v = plan_.volume(l, o);
-    if (v.culled) return;
-    stats.volume_segments += v.segments();
-    ++stats.volumes_drawn;
-    if (cpu) stats.volume_primitives += volumes_.volume(l, o).primitive_count();
-    backend_->count_volume(l, o);
+  // Counts the volumes of the objects `which` takes, those not culled, in one call.
+  auto count = [&](auto&& objects, auto&& which) {
+    counted_.clear();
+    for (const std::size_t o : objects) {
+      const VolumePlan& v = plan_.volume(l, o);
+      if (v.culled || !which(o)) continue;
+      stats.volume_segments += v.segments();
+      ++stats.volumes_drawn;
+      if (cpu) stats.volume_primitives += volumes_.volume(l, o).primitive_count();
+      counted_.push_back(static_cast<std::uint32_t>(o));
+    }
+    backend_->count_volumes(l, counted_);
   };
   // The opaque casters' counts: the shadow mask.
   timed(*backend_, stats.ms_counts, [&] {
     backend_->begin_mask(l);
-    for (std::size_t o = 0; o < plan_.objects.size(); ++o)
-      if (!plan_.transparent(o)) count(o);
+    count(std::views::iota(std::size_t{0}, plan_.objects.size()),
+          [&](std::size_t o) { return !plan_.transparent(o); });
     backend_->end_counts();
   });
   if (read_back) timed(*backend_, stats.ms_readback, [&] { backend_->read_mask(l, out); });
@@ -169,7 +175,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     timed(*backend_, stats.ms_counts, [&] {
       backend_->begin_light_map(l);
       for (std::size_t g = 0; g < plan_.glass.size(); ++g) {
-        for (const std::size_t o : plan_.glass[g].members) count(o);
+        count(plan_.glass[g].members, [](std::size_t) { return true; });
         backend_->end_group(g);
       }
       backend_->end_counts();

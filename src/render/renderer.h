@@ -58,7 +58,8 @@ class Renderer {
   FramePlan plan_;
   CcShadowVolumes cc_;
   OcclusionCulling occlusion_;
-  std::vector<std::uint32_t> all_;  // a layer's objects, for a depth pass drawn whole
+  std::vector<std::uint32_t> all_;      // a layer's objects, for a depth pass drawn whole
+  std::vector<std::uint32_t> counted_;  // the volumes of one count_volumes
   VolumeCosts costs_;  // measured on the backend at the first frame that clamps continuously
   VolumeCache volumes_;
   std::vector<std::uint8_t> none_rebuilt_;  // for a backend that builds its own volumes

@@ -48,6 +48,29 @@ void clip_volume(const PrimitiveList& list, int corners, const glm::mat4& mvp, i
   }
 }
 
+// Calls add(list, corners, cap) for each primitive list of a volume its plan counts: first what
+// counts in every tile (the sides, a transparent caster's light caps, a clamped volume's dark caps,
+// which lie among the receivers), then the caps that count only where z-fail does (cap = 1).
+template <class Add>
+void for_each_counted_list(const VolumeBuffer& v, const VolumePlan& vp, Add&& add) {
+  add(v.sides, kQuadCorners, 0u);
+  if (vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 0u);
+  if (vp.dark_caps_everywhere()) add(v.dark_caps, kTriangleCorners, 0u);
+  if (vp.counts_caps) {
+    if (!vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 1u);
+    if (!vp.dark_caps_everywhere()) add(v.dark_caps, kTriangleCorners, 1u);
+  }
+}
+
+// Laine 2005 §7's depth bounds (VolumePlan::depth_bounds), within the depths the volume's own
+// clip-space triangles reach: a clamped or bounded volume's segments often lie in a narrow range
+// of them.
+raster::DepthBounds counted_bounds(const VolumePlan& vp, std::span<const glm::vec4> triangles) {
+  const raster::DepthBounds reached = raster::reached_depths(triangles);
+  return {std::max(vp.depth_bounds.zmin, reached.zmin),
+          std::min(vp.depth_bounds.zmax, reached.zmax)};
+}
+
 }  // namespace
 
 Renderer soft_renderer() { return Renderer(std::make_unique<SoftBackend>()); }
@@ -183,23 +206,10 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
     for (std::size_t p = 0; p < list.size(); ++p)
       keys_.insert(keys_.end(), per, 2 * (by_part ? list.parts[p] : 0) + cap);
   };
-  // First what counts in every tile: the sides, a transparent caster's light caps, a clamped
-  // volume's dark caps (which lie among the receivers); then the caps that count only where
-  // z-fail does.
-  add(v.sides, kQuadCorners, 0);
-  if (vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 0);
-  if (vp.dark_caps_everywhere()) add(v.dark_caps, kTriangleCorners, 0);
-  if (vp.counts_caps) {
-    if (!vp.light_caps_everywhere) add(v.light_caps, kTriangleCorners, 1);
-    if (!vp.dark_caps_everywhere()) add(v.dark_caps, kTriangleCorners, 1);
-  }
-  // Depth bounds, Laine 2005 §7's (VolumePlan::depth_bounds), within the depths the volume's own
-  // triangles reach: a clamped or bounded volume's segments often lie in a narrow range of them.
+  for_each_counted_list(v, vp, add);
   // Pre-filled z-pass starts inside the volume: a pixel beyond all of it must still count its way
   // out, so no far bound.
-  const raster::DepthBounds reached = raster::reached_depths(tris_);
-  raster::DepthBounds bounds{std::max(vp.depth_bounds.zmin, reached.zmin),
-                             std::min(vp.depth_bounds.zmax, reached.zmax)};
+  raster::DepthBounds bounds = counted_bounds(vp, tris_);
   if (vp.prefill) {  // ZP+: where z-pass counts, start from the near plane's count
     bounds.zmin = 0.0f;
     prefill_tris_.clear();
@@ -231,7 +241,9 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
       raster::draw_counts(target_, triangles, weights, raster::CountRule::fill, fill, {},
                           {split.plane, split.tiles}, strip);
       stats.fill += fill.pixels_processed;
-      stats.ms_counts -= ms_since(measuring);  // not the frame's work
+      const double ms = ms_since(measuring);  // not the frame's work
+      stats.ms_counts -= ms;
+      stats.ms_measuring += ms;
     }
   };
   if (splits.empty()) {
@@ -273,7 +285,51 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
       }
       work = {};
     }
-    stats.ms_counts -= ms_since(bookkeeping);
+    const double ms = ms_since(bookkeeping);
+    stats.ms_counts -= ms;
+    stats.ms_measuring += ms;
+  }
+}
+
+// Volumes counted whole by z-pass or z-fail over the whole image go into one draw per rule, each
+// triangle within its own volume's depth bounds; the rest (split planes, pre-fills, strips, and
+// every volume where its tile work is kept apart) are counted one by one.
+void SoftBackend::count_volumes(std::size_t l, std::span<const std::uint32_t> objects) {
+  const FramePlan& plan = in_->plan;
+  FrameStats& stats = in_->frame.stats;
+  for (Batch& batch : batches_) batch.clear();
+  for (const std::uint32_t o : objects) {
+    const VolumePlan& vp = plan.volume(l, o);
+    if (!batching_ || vp.rule == VolumeRule::split || vp.prefill || !vp.strips.empty() ||
+        in_->options.tile_work_per_object) {
+      count_volume(l, o);
+      continue;
+    }
+    Batch& batch = batches_[vp.rule == VolumeRule::zfail];
+    const std::size_t first = batch.weights.size();
+    const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
+    for_each_counted_list(
+        in_->volumes.volume(l, o), vp, [&](const PrimitiveList& list, int corners, std::uint32_t) {
+          clip_volume(list, corners, mvp, plan.objects[o].weight_sign, batch.tris, batch.weights);
+        });
+    const raster::DepthBounds bounds = counted_bounds(vp, std::span(batch.tris).subspan(3 * first));
+    batch.bounds.resize(batch.weights.size(), bounds);
+  }
+  for (int zfail = 0; zfail < 2; ++zfail) {
+    const Batch& batch = batches_[zfail];
+    if (batch.weights.empty()) continue;
+    const std::uint64_t writes = stats.counts.count_updates;
+    raster::draw_counts(target_, batch.tris, batch.weights, batch.bounds,
+                        zfail ? raster::CountRule::zfail : raster::CountRule::zpass, stats.counts);
+    stats.stencil_writes += stats.counts.count_updates - writes;
+    if (!in_->options.count_fill) continue;
+    raster::Counters fill;
+    const auto measuring = Clock::now();
+    raster::draw_counts(target_, batch.tris, batch.weights, raster::CountRule::fill, fill);
+    stats.fill += fill.pixels_processed;
+    const double ms = ms_since(measuring);  // not the frame's work
+    stats.ms_counts -= ms;
+    stats.ms_measuring += ms;
   }
 }
 

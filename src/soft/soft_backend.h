@@ -50,6 +50,10 @@ class SoftBackend final : public FrameBackend {
   void begin_mask(std::size_t) override {}  // counts are zero after each read
   void begin_light_map(std::size_t light) override;
   void count_volume(std::size_t light, std::size_t object) override;
+  // Volumes counted by z-pass or z-fail over the whole image go into one draw per rule (each
+  // triangle kept to its volume's depth bounds) unless batching is off: the same counts.
+  void count_volumes(std::size_t light, std::span<const std::uint32_t> objects) override;
+  void set_batching(bool on) { batching_ = on; }
   void end_group(std::size_t group) override;
   void read_mask(std::size_t light, SurfaceLayer& layer) override;
   void read_light_map(std::size_t light, SurfaceLayer& layer) override;
@@ -89,6 +93,15 @@ class SoftBackend final : public FrameBackend {
   std::vector<glm::vec4> tris_, prefill_tris_;
   std::vector<std::int32_t> weights_, prefill_weights_;
   std::vector<std::uint32_t> ids_;     // a depth batch's id per triangle
+  // count_volumes: the volumes of one rule (z-pass, z-fail), each triangle with its bounds.
+  struct Batch {
+    std::vector<glm::vec4> tris;
+    std::vector<std::int32_t> weights;
+    std::vector<raster::DepthBounds> bounds;
+    void clear() { tris.clear(), weights.clear(), bounds.clear(); }
+  };
+  Batch batches_[2];
+  bool batching_ = true;
   std::vector<std::uint8_t> answers_;  // per query of the frame: visible
   Layer layer_ = Layer::opaque;        // of the depth pass begun
   std::vector<std::uint32_t> keys_, prefill_keys_;

@@ -373,3 +373,34 @@ TEST(Renderer, OptionsOutsideTheRasterizersLimitsAreRefused) {
 
 }  // namespace
 }  // namespace shadowvol
+
+namespace shadowvol {
+namespace {
+
+// Batching (SoftBackend::count_volumes: one draw per rule, each triangle within its own volume's
+// depth bounds) gives the image, the masks and every counter of counting volume by volume, on
+// scenes with z-pass and z-fail volumes side by side, transparent casters, and the city.
+TEST(Renderer, BatchedVolumesCountAsVolumeByVolume) {
+  for (const char* name : {"demo", "camera-in-shadow", "light-in-view", "glass", "city:48"}) {
+    const Scene scene = *builtin_scene(name);
+    RenderOptions options{200, 120, Method::automatic, Generator::automatic};
+    options.count_fill = true;
+    Renderer batched = soft::soft_renderer(), apart = soft::soft_renderer();
+    dynamic_cast<soft::SoftBackend&>(apart.backend()).set_batching(false);
+    const Frame a = batched.render(scene, options), b = apart.render(scene, options);
+    EXPECT_EQ(a.image.rgba, b.image.rgba) << name;
+    EXPECT_EQ(a.shadowed, b.shadowed) << name;
+    EXPECT_EQ(a.glass.transmitted, b.glass.transmitted) << name;
+    EXPECT_EQ(a.stats.counts.triangles_in, b.stats.counts.triangles_in) << name;
+    EXPECT_EQ(a.stats.counts.tiles_touched, b.stats.counts.tiles_touched) << name;
+    EXPECT_EQ(a.stats.counts.tiles_skipped, b.stats.counts.tiles_skipped) << name;
+    EXPECT_EQ(a.stats.counts.pixels_processed, b.stats.counts.pixels_processed) << name;
+    EXPECT_EQ(a.stats.counts.count_updates, b.stats.counts.count_updates) << name;
+    EXPECT_EQ(a.stats.fill, b.stats.fill) << name;
+    EXPECT_EQ(a.stats.stencil_writes, b.stats.stencil_writes) << name;
+    EXPECT_EQ(a.stats.volumes_drawn, b.stats.volumes_drawn) << name;
+  }
+}
+
+}  // namespace
+}  // namespace shadowvol
