@@ -36,6 +36,11 @@ void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_
       "plane %d, volumes built %d, reused %d\n",
       s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
       s.volumes_built, s.volumes_reused);
+  if (s.parts_zpass > 0)
+    std::printf(
+        "  parts of z-fail objects counted by z-pass (their own spheres miss the near "
+        "plane's shadow): %d\n",
+        s.parts_zpass);
   using ull = unsigned long long;
   if (options.cull != Cull::none)
     std::printf(

@@ -425,6 +425,7 @@ void CcShadowVolumes::write_plan(const RenderOptions& options, FramePlan& plan, 
     }
     if (!partial && !clamped) continue;  // drawn whole
     VolumeClamp& clamp = v.clamp;
+    v.part_zfail.clear();  // a clamped volume is counted by its rule whole
     clamp.depth = glm::vec4(0.0f);
     if (clamped) {  // depth along its view's axis, in the object's own space
       const glm::dvec4 plane = views_.depth_plane(object_view_[o]);

@@ -153,11 +153,11 @@ FrameStats& FrameStats::operator+=(const FrameStats& other) {
         &S::queries_waited})
     this->*n += other.*n;
   for (std::size_t S::*n : {&S::triangles, &S::volume_primitives}) this->*n += other.*n;
-  for (int S::*n : {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::volumes_built,
-                    &S::volumes_reused, &S::casters_culled_in_shadow, &S::casters_culled_unseen,
-                    &S::light_views, &S::sub_objects_culled, &S::volumes_clamped,
-                    &S::volumes_clamped_away, &S::bvh_rebuilt, &S::objects_culled,
-                    &S::volumes_culled, &S::objects_drawn, &S::volumes_drawn})
+  for (int S::*n : {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::parts_zpass,
+                    &S::volumes_built, &S::volumes_reused, &S::casters_culled_in_shadow,
+                    &S::casters_culled_unseen, &S::light_views, &S::sub_objects_culled,
+                    &S::volumes_clamped, &S::volumes_clamped_away, &S::bvh_rebuilt,
+                    &S::objects_culled, &S::volumes_culled, &S::objects_drawn, &S::volumes_drawn})
     this->*n += other.*n;
   for (raster::Counters S::*c : {&S::depth, &S::counts, &S::split_sampling}) this->*c += other.*c;
   for (std::vector<int> S::*per_object : {&S::zfail_lights, &S::culled_lights}) {

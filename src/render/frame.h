@@ -166,6 +166,8 @@ struct FrameStats {
   std::size_t volume_primitives = 0;          // over all lights
   int objects_zpass = 0, objects_zfail = 0;   // over all lights
   int objects_split = 0;                      // over all lights: drawn by a split plane
+  // Over all lights: parts of z-fail objects counted by z-pass (VolumePlan::part_zfail).
+  int parts_zpass = 0;
   std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for
   std::vector<int> culled_lights;             // per object: lights its volume was culled for
   int volumes_built = 0, volumes_reused = 0;  // over all lights: the volume cache at work

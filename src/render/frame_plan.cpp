@@ -49,6 +49,33 @@ std::vector<Shape> caster_shapes(const Topology& topo, const glm::mat4& model,
   return shapes;
 }
 
+// Under Method::automatic, for an object whose volume may reach the near plane: per part, 1
+// where the part's own bounding sphere may shadow the near-plane rectangle; empty where every
+// part may (or the object is one part).
+std::vector<std::uint8_t> parts_reaching_near(const Topology& topo, const glm::mat4& model,
+                                              const std::array<glm::vec3, 4>& near_rect,
+                                              const glm::vec4& light) {
+  const std::size_t parts = topo.part_count();
+  if (parts < 2) return {};
+  std::vector<glm::vec3> lo(parts, glm::vec3(INFINITY)), hi(parts, glm::vec3(-INFINITY));
+  for (std::size_t v = 0; v < topo.positions.size(); ++v) {
+    const std::uint32_t part = topo.vertex_part[v];
+    if (part == Topology::kNoPart) continue;
+    const glm::vec3 q = glm::vec3(model * glm::vec4(topo.positions[v], 1.0f));
+    lo[part] = glm::min(lo[part], q);
+    hi[part] = glm::max(hi[part], q);
+  }
+  std::vector<std::uint8_t> zfail(parts, 0);
+  bool any_zpass = false;
+  for (std::size_t p = 0; p < parts; ++p) {
+    zfail[p] = lo[p].x <= hi[p].x &&
+               may_shadow_near_plane((lo[p] + hi[p]) * 0.5f, glm::length(hi[p] - lo[p]) * 0.5f,
+                                     near_rect, light);
+    any_zpass = any_zpass || !zfail[p];
+  }
+  return any_zpass ? zfail : std::vector<std::uint8_t>{};
+}
+
 }  // namespace
 
 std::pair<std::int32_t, std::uint32_t> FramePlan::object_of(std::uint32_t id) const {
@@ -156,6 +183,10 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
           may_shadow_near_plane(centre, glm::length(op.hi - op.lo) * 0.5f, near_rect, light);
       const bool zfail = options.method == Method::zfail || (reaches_near && !can_prefill);
       v.prefill = reaches_near && can_prefill;
+      v.part_zfail = zfail && options.method == Method::automatic
+                         ? parts_reaching_near(*object.topology, op.model, near_rect, light)
+                         : std::vector<std::uint8_t>{};
+      for (const std::uint8_t z : v.part_zfail) stats.parts_zpass += !z;
       // Under split_plane, a split plane per caster shape; a volume drawn by z-fail whole (the
       // light in the near plane) takes none.
       v.split.resize(zfail || shapes.empty() ? 0 : shapes[o].size());
@@ -187,7 +218,8 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
               : glm::vec4(glm::transpose(glm::dmat4(op.model)) * glm::dvec4(v.far_plane));
       v.build = {
           resolve_generator(object_generator(object, options.generator), object.topology->report),
-          v.counts_caps || v.prefill || v.light_caps_everywhere, object_far_plane, v.by_part()};
+          v.counts_caps || v.prefill || v.light_caps_everywhere, object_far_plane,
+          v.by_part() || v.by_part_rule()};
       (zfail             ? stats.objects_zfail
        : v.split.empty() ? stats.objects_zpass
                          : stats.objects_split) += 1;

@@ -96,6 +96,12 @@ struct VolumePlan {
   // Discrete clamping: the runs of strips of the image the volume is drawn in, each drawn apart;
   // empty: drawn once, over the whole image.
   std::vector<raster::ScreenStrip> strips;
+  // Under Method::automatic, where the object's volume may reach the near plane but only some of
+  // its parts' do (Topology's parts, each bounded by its own sphere; GPU Gems 3 §11.2.3 per
+  // part): per part, 1 to count it by z-fail (caps included), 0 by z-pass, for a backend that
+  // counts parts apart (the volume is built with parts). Empty: counted by `rule` whole. `rule`
+  // stays z-fail with caps, right for a backend that counts the volume whole.
+  std::vector<std::uint8_t> part_zfail;
   // Under VolumeRule::split: one PartSplit per part of the object (Topology::vertex_part) under
   // SplitParts::each, or one for the whole volume; else empty.
   std::vector<PartSplit> split;
@@ -103,6 +109,7 @@ struct VolumePlan {
   // Whether the parts are counted apart, each by its own split plane.
   bool by_part() const { return split.size() > 1; }
   bool clamped() const { return clamp.leaf_count() > 0; }
+  bool by_part_rule() const { return !part_zfail.empty(); }
   // Whether the dark caps count where z-pass does too (not only where z-fail does).
   bool dark_caps_everywhere() const { return clamped(); }
   // Segments drawn: the clamp's intervals (or 1), once per strip (or once).
@@ -155,7 +162,9 @@ struct FramePlan {
 
 // Decides everything above for this scene and these options into `plan`, reusing its storage.
 // `auto` takes z-fail for an object only where its bounding sphere may put part of the
-// near-plane rectangle in its shadow (GPU Gems 3 §11.2.3). `spsv` gives every object a split
+// near-plane rectangle in its shadow (GPU Gems 3 §11.2.3), and then, for an object of several
+// parts, only for the parts whose own spheres may (VolumePlan::part_zfail): one mesh of a whole
+// city is not forced to z-fail. `spsv` gives every object a split
 // plane, and `zp+db` draws by z-pass; both pre-fill where `auto` would take z-fail, and take
 // z-fail where the light lies in the near plane, which no pre-fill can see. Counts the objects of
 // each method into stats.

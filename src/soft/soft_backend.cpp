@@ -35,17 +35,22 @@ void clip_triangles(const SceneObject& o, const glm::mat4& mvp, std::vector<glm:
     out.push_back(mvp * glm::vec4(o.mesh->positions[i], 1.0f));
 }
 
-// Clip-space triangles of a primitive list (quads split by kQuadTriangles) and their weights.
+// Clip-space triangles of primitive p of a list (a quad split by kQuadTriangles) and their
+// weights.
+void clip_primitive(const PrimitiveList& list, int corners, std::size_t p, const glm::mat4& mvp,
+                    int sign, std::vector<glm::vec4>& tris, std::vector<std::int32_t>& weights) {
+  const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
+  for (int t = 0; t < (corners == kQuadCorners ? 2 : 1); ++t) {
+    for (int k = 0; k < 3; ++k) tris.push_back(mvp * v[kQuadTriangles[3 * t + k]]);
+    weights.push_back(sign * list.weights[p]);
+  }
+}
+
+// The same for every primitive of the list.
 void clip_volume(const PrimitiveList& list, int corners, const glm::mat4& mvp, int sign,
                  std::vector<glm::vec4>& tris, std::vector<std::int32_t>& weights) {
-  const int per = corners == kQuadCorners ? 2 : 1;
-  for (std::size_t p = 0; p < list.size(); ++p) {
-    const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
-    for (int t = 0; t < per; ++t) {
-      for (int k = 0; k < 3; ++k) tris.push_back(mvp * v[kQuadTriangles[3 * t + k]]);
-      weights.push_back(sign * list.weights[p]);
-    }
-  }
+  for (std::size_t p = 0; p < list.size(); ++p)
+    clip_primitive(list, corners, p, mvp, sign, tris, weights);
 }
 
 // Calls add(list, corners, cap) for each primitive list of a volume its plan counts: first what
@@ -198,11 +203,22 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
   weights_.clear();
   keys_.clear();
   // Under a split plane, each triangle's key: 2 * its part (0 for a volume split whole), plus 1
-  // for a cap, which counts only where z-fail does (Laine 2005 §3.3).
+  // for a cap, which counts only where z-fail does (Laine 2005 §3.3). Under rules per part, its
+  // part's rule (1 for z-fail), a z-pass part's caps left out.
+  const bool part_rules = vp.by_part_rule();
   auto add = [&](const PrimitiveList& list, int corners, std::uint32_t cap) {
+    const int per = corners == kQuadCorners ? 2 : 1;
+    if (part_rules) {
+      for (std::size_t p = 0; p < list.size(); ++p) {
+        const std::uint8_t zfail = vp.part_zfail[list.parts[p]];
+        if (cap && !zfail) continue;
+        clip_primitive(list, corners, p, mvp, sign, tris_, weights_);
+        keys_.insert(keys_.end(), per, zfail);
+      }
+      return;
+    }
     clip_volume(list, corners, mvp, sign, tris_, weights_);
     if (splits.empty()) return;
-    const int per = corners == kQuadCorners ? 2 : 1;
     for (std::size_t p = 0; p < list.size(); ++p)
       keys_.insert(keys_.end(), per, 2 * (by_part ? list.parts[p] : 0) + cap);
   };
@@ -246,7 +262,13 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
       stats.ms_measuring += ms;
     }
   };
-  if (splits.empty()) {
+  if (part_rules) {  // never pre-filled: only Method::automatic gives rules per part
+    volume_groups_.group(tris_, weights_, keys_, 2);
+    for (std::size_t zfail = 0; zfail < 2; ++zfail)
+      draw(volume_groups_.triangles_of(zfail, zfail + 1),
+           volume_groups_.weights_of(zfail, zfail + 1),
+           zfail ? raster::CountRule::zfail : raster::CountRule::zpass, bounds, {});
+  } else if (splits.empty()) {
     if (vp.prefill) draw(prefill_tris_, prefill_weights_, raster::CountRule::prefill, {}, {});
     draw(tris_, weights_,
          vp.rule == VolumeRule::zfail ? raster::CountRule::zfail : raster::CountRule::zpass, bounds,
@@ -305,15 +327,32 @@ void SoftBackend::count_volumes(std::size_t l, std::span<const std::uint32_t> ob
       count_volume(l, o);
       continue;
     }
-    Batch& batch = batches_[vp.rule == VolumeRule::zfail];
-    const std::size_t first = batch.weights.size();
+    // Each primitive into its rule's batch: the volume's, or under rules per part its part's (a
+    // z-pass part's caps left out); both parts' triangles within the bounds of all of them.
+    const std::size_t first[2] = {batches_[0].weights.size(), batches_[1].weights.size()};
     const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
-    for_each_counted_list(
-        in_->volumes.volume(l, o), vp, [&](const PrimitiveList& list, int corners, std::uint32_t) {
-          clip_volume(list, corners, mvp, plan.objects[o].weight_sign, batch.tris, batch.weights);
-        });
-    const raster::DepthBounds bounds = counted_bounds(vp, std::span(batch.tris).subspan(3 * first));
-    batch.bounds.resize(batch.weights.size(), bounds);
+    const int sign = plan.objects[o].weight_sign;
+    for_each_counted_list(in_->volumes.volume(l, o), vp,
+                          [&](const PrimitiveList& list, int corners, std::uint32_t cap) {
+                            if (!vp.by_part_rule()) {
+                              Batch& batch = batches_[vp.rule == VolumeRule::zfail];
+                              return clip_volume(list, corners, mvp, sign, batch.tris,
+                                                 batch.weights);
+                            }
+                            for (std::size_t p = 0; p < list.size(); ++p) {
+                              const std::uint8_t zfail = vp.part_zfail[list.parts[p]];
+                              if (cap && !zfail) continue;
+                              clip_primitive(list, corners, p, mvp, sign, batches_[zfail].tris,
+                                             batches_[zfail].weights);
+                            }
+                          });
+    raster::DepthBounds bounds{1.0f, 0.0f};
+    for (int k = 0; k < 2; ++k) {
+      const raster::DepthBounds b =
+          counted_bounds(vp, std::span(batches_[k].tris).subspan(3 * first[k]));
+      if (b.zmin <= b.zmax) bounds = {std::min(bounds.zmin, b.zmin), std::max(bounds.zmax, b.zmax)};
+    }
+    for (Batch& batch : batches_) batch.bounds.resize(batch.weights.size(), bounds);
   }
   for (int zfail = 0; zfail < 2; ++zfail) {
     const Batch& batch = batches_[zfail];

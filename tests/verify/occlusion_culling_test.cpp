@@ -182,6 +182,40 @@ TEST_P(OcclusionCulling, TheStreetCullsMostOfTheCityAndMatchesTheReference) {
   EXPECT_EQ(c.mismatched_outside_band, 0u);
 }
 
+// The city's buildings merged into one mesh, seen from the street: the mesh's bounding sphere
+// reaches the near plane's shadow, but most of its parts do not, and `auto` counts those by
+// z-pass (on the soft backend; gl counts the mesh by z-fail whole), exactly.
+TEST_P(OcclusionCulling, OneMeshOfAWholeCityIsNotForcedToZFail) {
+  const Scene city = scene_at_frame(*builtin_scene("city:96"), 2);
+  Scene merged = city;
+  merged.objects.clear();
+  Mesh buildings;
+  for (const SceneObject& o : city.objects) {
+    if (!o.name.starts_with("building")) {
+      merged.objects.push_back(o);
+      continue;
+    }
+    Mesh placed = *o.mesh;
+    for (glm::vec3& p : placed.positions) p = glm::vec3(o.transform * glm::vec4(p, 1.0f));
+    append_mesh(buildings, placed);
+  }
+  merged.objects.push_back(
+      make_object("buildings", std::move(buildings), glm::mat4(1.0f), {0.7f, 0.7f, 0.7f}));
+  auto renderer = renderer_for(GetParam());
+  ASSERT_TRUE(renderer);
+  const Frame automatic = renderer->render(merged, options_with(Occlusion::none));
+  const Frame zfail = renderer->render(merged, options_with(Occlusion::none, Method::zfail));
+  EXPECT_EQ(automatic.stats.zfail_lights.back(), 1);  // the merged mesh as a whole
+  if (GetParam() == Backend::soft) {
+    EXPECT_GT(automatic.stats.parts_zpass, 90);  // its buildings by z-pass, but those near
+    EXPECT_LT(automatic.stats.counts.pixels_processed, zfail.stats.counts.pixels_processed / 2);
+  }
+  EXPECT_EQ(automatic.shadowed, zfail.shadowed);
+  auto traced = trace_reference(merged, kWidth, kHeight);
+  ASSERT_TRUE(traced.ok());
+  EXPECT_EQ(compare(automatic, *traced).mismatched_outside_band, 0u);
+}
+
 std::string backend_name(const ::testing::TestParamInfo<Backend>& info) {
   return info.param == Backend::soft ? "soft" : "gl";
 }
