@@ -1,7 +1,8 @@
 #include "render/occlusion_culling.h"
 
+#include <algorithm>
 #include <chrono>
-#include <queue>
+#include <functional>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -56,13 +57,17 @@ void OcclusionCulling::walk(FrameBackend& backend, std::vector<NodeState>& state
   if (bvh_.empty()) return;
   const std::span<const SceneBvh::Node> nodes = bvh_.nodes();
   opened_.assign(nodes.size(), 0);
-  using Entry = std::pair<float, std::uint32_t>;  // nearest first
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> nearest;
+  // The nodes to visit, nearest first: a heap in storage kept between walks.
+  std::vector<Entry>& nearest = nearest_;
+  nearest.clear();
+  auto push = [&](std::uint32_t n) {
+    nearest.emplace_back(distance2(nodes[n].box), n);
+    std::push_heap(nearest.begin(), nearest.end(), std::greater<Entry>());
+  };
   auto open = [&](std::uint32_t n) {
     opened_[n] = 1;
     if (nodes[n].leaf()) return open_leaf(nodes[n]);
-    for (const std::uint32_t child : {n + 1, bvh_.second_child(n)})
-      nearest.emplace(distance2(nodes[child].box), child);
+    for (const std::uint32_t child : {n + 1, bvh_.second_child(n)}) push(child);
   };
   auto pull_up = [&](std::uint32_t n) {
     for (;;) {
@@ -72,7 +77,7 @@ void OcclusionCulling::walk(FrameBackend& backend, std::vector<NodeState>& state
       n = parent_[n];
     }
   };
-  nearest.emplace(distance2(nodes[0].box), 0u);
+  push(0);
   queries_.clear();
   while (!nearest.empty() || !queries_.empty()) {
     // Answers first, in order: those ready, or the next one when nothing else is left to do.
@@ -85,8 +90,9 @@ void OcclusionCulling::walk(FrameBackend& backend, std::vector<NodeState>& state
       pull_up(done.node);
     }
     if (nearest.empty()) continue;
-    const std::uint32_t n = nearest.top().second;
-    nearest.pop();
+    std::pop_heap(nearest.begin(), nearest.end(), std::greater<Entry>());
+    const std::uint32_t n = nearest.back().second;
+    nearest.pop_back();
     ++stats.nodes_visited;
     const bool was_visible = state[n].visible && state[n].frame == frame_ - 1;
     state[n] = {false, frame_};

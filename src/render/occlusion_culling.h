@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <utility>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -79,6 +80,8 @@ class OcclusionCulling {
     FrameBackend::QueryId query;
   };
   std::deque<Pending> queries_;
+  using Entry = std::pair<float, std::uint32_t>;  // a node and its squared distance from the eye
+  std::vector<Entry> nearest_;
 };
 
 }  // namespace shadowvol

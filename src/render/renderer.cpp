@@ -81,10 +81,10 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
     costs_ = backend_->measure_volume_costs();
   stats.volume_costs = costs_;
   backend_->begin_frame(in);
-  // A layer: its depth pass over the depth target as it stands, its ids, then per light its
-  // shadows and light.
-  const bool occlusion = options.occlusion != Occlusion::none;
-  if (occlusion) occlusion_.begin_frame(plan_, stats);
+  // The scene BVH made current for this frame's boxes, where occlusion culling walks it.
+  if (options.occlusion != Occlusion::none) occlusion_.begin_frame(plan_, stats);
+  // A layer: its depth pass over the depth target as it stands (the opaque one front to back by
+  // occlusion culling, where asked), its ids, then per light its shadows and light.
   auto draw_layer = [&](Layer layer, SurfaceLayer& out) {
     const bool opaque = layer == Layer::opaque;
     timed(*backend_, stats.ms_depth, [&] {
