@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -621,7 +622,7 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles,
 }
 
 std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthBounds bounds,
-                    Counters& counters) {
+                    Counters& counters, bool stop_at_first) {
   prepare(target, triangles, counters);
   const std::uint64_t passed_before = counters.pixels_passed;
   // Skips a tile only where every fragment lies behind every stored depth; the hi-z's nearest
@@ -630,13 +631,18 @@ std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthB
     const TileDepth& tile = target.tile_depth[static_cast<std::size_t>(band) * target.tiles_x + tx];
     return TileDecision{zhi < tile.zmin ? TileVerdict::skip : TileVerdict::test, CountRule::zpass};
   };
+  std::atomic<bool> found{false};
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
+    if (stop_at_first && found.load(std::memory_order_relaxed)) return;
     const float* depth = target.depth.data();
     raster(target, p.setup, band, c, nullptr, StripInPixels{}, tile_test,
-           [depth, bounds](std::size_t first, const Mask& covered, const Floats& z, auto lanes,
-                           auto, CountRule) {
+           [depth, bounds, &found](std::size_t first, const Mask& covered, const Floats& z,
+                                   auto lanes, auto, CountRule) {
              const Floats stored = load_row<Floats>(depth + first, lanes);
-             return covered & (z >= stored) & (stored >= bounds.zmin) & (stored <= bounds.zmax);
+             const Mask pass =
+                 covered & (z >= stored) & (stored >= bounds.zmin) & (stored <= bounds.zmax);
+             if (any(pass)) found.store(true, std::memory_order_relaxed);
+             return pass;
            });
   });
   return counters.pixels_passed - passed_before;

@@ -173,8 +173,10 @@ struct DepthBounds {
 // triangles lies at or in front of the stored depth, and the stored depth within `bounds`;
 // nothing is written. Both facings are drawn. The answer also goes into counters.pixels_passed.
 // Valid during a depth pass (it tests the depths drawn so far; the hi-z need not be current).
+// With `stop_at_first`, the bands stop taking triangles once a pixel has passed: the answer is
+// then only whether any did (0, or at least 1).
 std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthBounds bounds,
-                    Counters& counters);
+                    Counters& counters, bool stop_at_first = false);
 
 // The window depths clip-space triangles reach (clamped to 0 .. 1 as drawn, widened by a hair
 // for the rasterizer's rounding): a pixel whose stored depth lies outside them sees no primitive

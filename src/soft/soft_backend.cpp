@@ -153,7 +153,7 @@ FrameBackend::QueryId SoftBackend::issue_query(std::span<const glm::vec4> triang
   const raster::DepthBounds bounds{surfaces_only ? std::numeric_limits<float>::denorm_min() : 0.0f,
                                    1.0f};
   raster::Counters counters;
-  answers_.push_back(raster::query(target_, tris_, bounds, counters) > 0);
+  answers_.push_back(raster::query(target_, tris_, bounds, counters, true) > 0);
   return static_cast<QueryId>(answers_.size() - 1);
 }
 

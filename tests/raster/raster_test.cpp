@@ -566,6 +566,9 @@ TEST(Query, PassesAtOrInFrontOfTheStoredDepthAndWritesNothing) {
   const std::vector<glm::vec4> corner{{-1, -1, 0.9f, 1}, {0, -1, 0.9f, 1}, {-1, 0, 0.9f, 1},
                                       {0, -1, 0.9f, 1},  {0, 0, 0.9f, 1},  {-1, 0, 0.9f, 1}};
   EXPECT_EQ(query(target, corner, surfaces, c), 64u);
+  // Stopping at the first pixel: only whether any passed.
+  EXPECT_GE(query(target, screen(0.6f), surfaces, c, true), 1u);
+  EXPECT_EQ(query(target, screen(0.4f), surfaces, c, true), 0u);
 }
 
 // A depth pass of several objects' triangles in one draw, each with its own id, leaves what
