@@ -8,6 +8,7 @@
 #include <cstring>
 #include <map>
 #include <string>
+#include <tuple>
 
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
@@ -28,6 +29,17 @@ struct VolumeVertex {
   glm::vec4 position;
   std::int32_t weight;
 };
+
+// Grows a buffer to hold `bytes` where it holds less (new storage, its contents lost), and fills
+// it with `data` (none: left as it is).
+void fill_buffer(Object& buffer, GLsizeiptr& capacity, const void* data, GLsizeiptr bytes) {
+  if (bytes > capacity) {
+    buffer = make_buffer();
+    capacity = std::max(bytes, 2 * capacity);
+    glNamedBufferStorage(buffer.get(), capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
+  }
+  if (data && bytes > 0) glNamedBufferSubData(buffer.get(), 0, bytes, data);
+}
 
 // Copies a bottom-up OpenGL read-back into top-down rows, converting each element.
 template <class In, class Out, class Convert>
@@ -85,6 +97,7 @@ struct GlBackend::MeshBuffers {
   Object adjacency_positions, adjacency_indices, adjacency_vao;
   GLsizei adjacency_index_count = 0;
   bool used = false;
+  std::uint64_t serial = 0;  // unique per backend: a new copy is never taken for an old one
 
   void build_adjacency();
 };
@@ -325,6 +338,23 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
       if (auto ok = link(b, std::string(b.name) + in); !ok) return ok.error();
   }
   r->empty_vao_ = make_vertex_array();
+  for (auto [out, fragment, name] :
+       {std::tuple{&r->volume_batch_, count[0].c_str(), "cpu volumes in batches"},
+        std::tuple{&r->light_map_batch_, light_map[0].c_str(),
+                   "cpu volumes in batches into the light map"}}) {
+    auto program = link_program(
+        name, {{GL_VERTEX_SHADER, kVolumeBatchVertex}, {GL_FRAGMENT_SHADER, fragment}});
+    if (!program) return program.error();
+    *out = std::move(*program);
+  }
+  r->batch_ = std::make_unique<Batch>();
+  r->geometry_ = std::make_unique<SceneGeometry>();
+  {
+    auto program = link_program("depth in batches", {{GL_VERTEX_SHADER, kSurfaceBatchVertex},
+                                                     {GL_FRAGMENT_SHADER, kDepthBatchFragment}});
+    if (!program) return program.error();
+    r->depth_batch_ = std::move(*program);
+  }
   {
     auto query = link_program("occlusion query", {{GL_VERTEX_SHADER, kQueryVertex},
                                                   {GL_FRAGMENT_SHADER, kQueryFragment}});
@@ -346,6 +376,7 @@ GlBackend::MeshBuffers& GlBackend::mesh_buffers(const SceneObject& object) {
     MeshBuffers& m = *slot;
     m.mesh = object.mesh;
     m.topology = object.topology;
+    m.serial = ++mesh_serial_;
     const Mesh& mesh = *object.mesh;
     std::vector<glm::vec4> points;
     points.reserve(mesh.positions.size());
@@ -406,6 +437,79 @@ void GlBackend::draw_surfaces(std::span<const std::uint32_t> objects, PerObject&
     glBindVertexArray(frame_meshes_[o]->vao.get());
     glDrawElements(GL_TRIANGLES, frame_meshes_[o]->index_count, GL_UNSIGNED_INT, nullptr);
   }
+}
+
+struct GlBackend::SceneGeometry {
+  struct Place {
+    GLint base_vertex = 0;
+    GLuint first_index = 0;
+  };
+  struct ObjectData {
+    glm::mat4 mvp;
+    glm::uvec4 first_id;
+    glm::vec4 albedo;
+  };
+  struct Command {  // DrawElementsIndirectCommand
+    GLuint count, instances, first_index;
+    GLint base_vertex;
+    GLuint base_instance;
+  };
+  Object vertices, indices, vao, objects = make_buffer(), commands = make_buffer();
+  Object instance_ids;
+  GLsizeiptr object_bytes = 0, command_bytes = 0;
+  std::vector<std::uint64_t> made_for;  // the meshes' serials, in the order of first use
+  std::unordered_map<const MeshBuffers*, Place> places;
+  std::vector<ObjectData> object_data;
+  std::vector<Command> draws;
+};
+
+void GlBackend::make_scene_geometry() {
+  SceneGeometry& g = *geometry_;
+  std::vector<const MeshBuffers*> meshes;
+  std::vector<std::uint64_t> serials;
+  for (const MeshBuffers* m : frame_meshes_)
+    if (std::find(meshes.begin(), meshes.end(), m) == meshes.end())
+      meshes.push_back(m), serials.push_back(m->serial);
+  if (serials == g.made_for && g.vao && g.object_data.capacity() >= frame_meshes_.size()) return;
+  g.object_data.reserve(frame_meshes_.size());
+  g.made_for = serials;
+  g.places.clear();
+  GLsizeiptr vertex_count = 0, index_count = 0;
+  for (const MeshBuffers* m : meshes) {
+    g.places[m] = {GLint(vertex_count), GLuint(index_count)};
+    vertex_count += GLsizeiptr(m->mesh->positions.size());
+    index_count += m->index_count;
+  }
+  g.vertices = make_buffer();
+  g.indices = make_buffer();
+  g.vao = make_vertex_array();
+  glNamedBufferStorage(g.vertices.get(), std::max<GLsizeiptr>(vertex_count, 1) * 16, nullptr, 0);
+  glNamedBufferStorage(g.indices.get(), std::max<GLsizeiptr>(index_count, 1) * 4, nullptr, 0);
+  for (const MeshBuffers* m : meshes) {
+    const SceneGeometry::Place at = g.places[m];
+    if (!m->mesh->positions.empty())
+      glCopyNamedBufferSubData(m->positions.get(), g.vertices.get(), 0,
+                               GLintptr(at.base_vertex) * 16,
+                               GLsizeiptr(m->mesh->positions.size()) * 16);
+    if (m->index_count > 0)
+      glCopyNamedBufferSubData(m->indices.get(), g.indices.get(), 0, GLintptr(at.first_index) * 4,
+                               GLsizeiptr(m->index_count) * 4);
+  }
+  std::vector<GLuint> ids(std::max<std::size_t>(frame_meshes_.size(), 1));
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = GLuint(i);
+  g.instance_ids = make_buffer();
+  glNamedBufferStorage(g.instance_ids.get(), GLsizeiptr(ids.size() * sizeof(GLuint)), ids.data(),
+                       0);
+  glVertexArrayVertexBuffer(g.vao.get(), 0, g.vertices.get(), 0, sizeof(glm::vec4));
+  glVertexArrayAttribFormat(g.vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayVertexBuffer(g.vao.get(), 1, g.instance_ids.get(), 0, sizeof(GLuint));
+  glVertexArrayAttribIFormat(g.vao.get(), 2, 1, GL_UNSIGNED_INT, 0);
+  glVertexArrayBindingDivisor(g.vao.get(), 1, 1);
+  for (GLuint a : {0u, 2u}) {
+    glVertexArrayAttribBinding(g.vao.get(), a, a == 2 ? 1 : 0);
+    glEnableVertexArrayAttrib(g.vao.get(), a);
+  }
+  glVertexArrayElementBuffer(g.vao.get(), g.indices.get());
 }
 
 void GlBackend::begin_frame(const FrameInputs& inputs) {
@@ -482,6 +586,35 @@ void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
   glDepthFunc(GL_GREATER);  // nearer is greater
   glNamedFramebufferDrawBuffers(t.scene.get(), 2, opaque ? kBoth : kIdsOnly);
   glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
+  std::vector<std::uint32_t>& drawn = drawn_[static_cast<int>(layer_)];
+  drawn.insert(drawn.end(), objects.begin(), objects.end());
+  // The opaque layer's objects in one multi-draw, where the surfaces pass the vertex shader alone.
+  if (batching_ && cpu_ && opaque && objects.size() > 1) {
+    make_scene_geometry();
+    SceneGeometry& g = *geometry_;
+    g.object_data.resize(plan.objects.size());
+    g.draws.clear();
+    for (const std::uint32_t o : objects) {
+      const SceneGeometry::Place at = g.places.at(frame_meshes_[o]);
+      g.object_data[o] = {plan.view_proj * plan.objects[o].model,
+                          glm::uvec4(plan.objects[o].first_id),
+                          glm::vec4(scene.objects[o].material.color, 1.0f)};
+      g.draws.push_back(
+          {GLuint(frame_meshes_[o]->index_count), 1, at.first_index, at.base_vertex, o});
+    }
+    fill_buffer(g.objects, g.object_bytes, g.object_data.data(),
+                GLsizeiptr(g.object_data.size() * sizeof(SceneGeometry::ObjectData)));
+    fill_buffer(g.commands, g.command_bytes, g.draws.data(),
+                GLsizeiptr(g.draws.size() * sizeof(SceneGeometry::Command)));
+    glUseProgram(depth_batch_.get());
+    glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g.objects.get());
+    glBindVertexArray(g.vao.get());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, g.commands.get());
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(g.draws.size()), 0);
+    glDepthMask(GL_FALSE);
+    return;
+  }
   glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
   glUniform1i(glsl::kVisibleOnly, GL_FALSE);
   draw_surfaces(objects, [&](std::size_t o) {
@@ -489,8 +622,6 @@ void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
     glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.color));
   });
   glDepthMask(GL_FALSE);
-  std::vector<std::uint32_t>& drawn = drawn_[static_cast<int>(layer_)];
-  drawn.insert(drawn.end(), objects.begin(), objects.end());
 }
 
 void GlBackend::end_depth() {
@@ -853,6 +984,114 @@ void GlBackend::begin_light_map(std::size_t) {
   const int strips = clamps_discrete(in_->options.clamp);
   glUseProgram(cpu_ ? light_map_cpu_[strips].get() : light_map_gpu_[strips].get());
   set_viewport_uniform(strips);
+}
+
+struct GlBackend::Batch {
+  struct ObjectData {
+    glm::mat4 mvp;
+    glm::ivec4 mirror;
+  };
+  struct Command {  // DrawArraysIndirectCommand
+    GLuint count, instances, first, base_instance;
+  };
+  Object vertices = make_buffer(), objects = make_buffer(), commands = make_buffer();
+  Object instance_ids = make_buffer(), vao = make_vertex_array();
+  GLsizeiptr vertex_bytes = 0, object_bytes = 0, command_bytes = 0;
+  GLuint instance_count = 0;
+  std::vector<ObjectData> object_data;
+  std::vector<GLint> base;                     // per batch slot: its first vertex in `vertices`
+  std::vector<Command> draws[2][2], whole[2];  // [zfail][negative sign]; [zfail]
+};
+
+void GlBackend::count_volumes(std::size_t l, std::span<const std::uint32_t> objects) {
+  if (!batching_ || !cpu_ || clamps_discrete(in_->options.clamp) || objects.size() < 2)
+    return FrameBackend::count_volumes(l, objects);
+  const FramePlan& plan = in_->plan;
+  Batch& b = *batch_;
+  const bool additive = mask_additive_ || into_light_map_;
+  b.object_data.clear();
+  b.base.clear();
+  for (auto& by_sign : b.draws)
+    for (auto& draws : by_sign) draws.clear();
+  for (auto& draws : b.whole) draws.clear();
+  // The volumes into one buffer, each object a slot: its draws, by rule and (stencil) by sign.
+  GLsizeiptr bytes = 0;
+  for (const std::uint32_t o : objects)
+    bytes += uploads_[l][o]->vertices * GLsizeiptr(sizeof(VolumeVertex));
+  fill_buffer(b.vertices, b.vertex_bytes, nullptr, bytes);
+  GLint next = 0;
+  for (const std::uint32_t o : objects) {
+    const VolumeUpload& up = *uploads_[l][o];
+    const auto slot = static_cast<GLuint>(b.object_data.size());
+    const int mirror = plan.objects[o].weight_sign;
+    b.object_data.push_back({plan.view_proj * plan.objects[o].model, glm::ivec4(mirror)});
+    if (up.vertices > 0)
+      glCopyNamedBufferSubData(up.buffer.get(), b.vertices.get(), 0,
+                               next * GLintptr(sizeof(VolumeVertex)),
+                               up.vertices * GLsizeiptr(sizeof(VolumeVertex)));
+    const bool zfail = plan.volume(l, o).rule == VolumeRule::zfail;
+    b.whole[zfail].push_back({GLuint(up.vertices), 1, GLuint(next), slot});
+    for (const VolumeUpload::Group& g : up.groups)  // the stencil: |weight| draws of each
+      for (int k = 0; k < std::abs(g.weight); ++k)
+        b.draws[zfail][(g.weight > 0 ? mirror : -mirror) < 0].push_back(
+            {GLuint(g.count), 1, GLuint(next + g.first), slot});
+    next += up.vertices;
+  }
+  fill_buffer(b.objects, b.object_bytes, b.object_data.data(),
+              GLsizeiptr(b.object_data.size() * sizeof(Batch::ObjectData)));
+  if (b.instance_count < b.object_data.size()) {
+    std::vector<GLuint> ids(std::max<std::size_t>(b.object_data.size(), 2 * b.instance_count));
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = GLuint(i);
+    b.instance_ids = make_buffer();
+    glNamedBufferStorage(b.instance_ids.get(), GLsizeiptr(ids.size() * sizeof(GLuint)), ids.data(),
+                         0);
+    b.instance_count = GLuint(ids.size());
+  }
+  glVertexArrayVertexBuffer(b.vao.get(), 0, b.vertices.get(), 0, sizeof(VolumeVertex));
+  glVertexArrayAttribFormat(b.vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribIFormat(b.vao.get(), 1, 1, GL_INT, offsetof(VolumeVertex, weight));
+  glVertexArrayVertexBuffer(b.vao.get(), 1, b.instance_ids.get(), 0, sizeof(GLuint));
+  glVertexArrayAttribIFormat(b.vao.get(), 2, 1, GL_UNSIGNED_INT, 0);
+  glVertexArrayBindingDivisor(b.vao.get(), 1, 1);
+  for (GLuint a : {0u, 1u, 2u}) {
+    glVertexArrayAttribBinding(b.vao.get(), a, a == 2 ? 1 : 0);
+    glEnableVertexArrayAttrib(b.vao.get(), a);
+  }
+  GLint program = 0;
+  glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+  glUseProgram(into_light_map_ ? light_map_batch_.get() : volume_batch_.get());
+  if (into_light_map_) {  // every object of one call is of one group
+    const auto group = static_cast<std::size_t>(plan.objects[objects.front()].glass_group);
+    glUniform3fv(glsl::kPerCount, 1, glm::value_ptr(plan.glass[group].log_transmittance));
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.objects.get());
+  glBindVertexArray(b.vao.get());
+  auto multi_draw = [&](const std::vector<Batch::Command>& draws) {
+    if (draws.empty()) return;
+    fill_buffer(b.commands, b.command_bytes, draws.data(),
+                GLsizeiptr(draws.size() * sizeof(Batch::Command)));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.commands.get());
+    glMultiDrawArraysIndirect(GL_TRIANGLES, nullptr, GLsizei(draws.size()), 0);
+  };
+  for (int zfail = 0; zfail < 2; ++zfail) {
+    if (b.whole[zfail].empty()) continue;
+    const Rule rule = zfail ? Rule::zfail : Rule::zpass;
+    if (zfail)  // as draw_volume: the dark caps at w = 0 clamped rather than clipped
+      glEnable(GL_DEPTH_CLAMP);
+    else
+      glDisable(GL_DEPTH_CLAMP);
+    if (additive) {
+      count_state(true, rule, 1);  // the mirror is each object's, in the vertex shader
+      multi_draw(b.whole[zfail]);
+    } else {
+      for (int negative = 0; negative < 2; ++negative) {
+        count_state(false, rule, negative ? -1 : 1);
+        multi_draw(b.draws[zfail][negative]);
+      }
+    }
+    if (in_->options.count_fill) measure_fill(!zfail, [&] { multi_draw(b.whole[zfail]); });
+  }
+  glUseProgram(GLuint(program));
 }
 
 void GlBackend::count_volume(std::size_t l, std::size_t o) {

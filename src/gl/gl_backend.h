@@ -92,6 +92,11 @@ class GlBackend final : public FrameBackend {
   void begin_mask(std::size_t light) override;
   void begin_light_map(std::size_t light) override;
   void count_volume(std::size_t light, std::size_t object) override;
+  // CPU volumes over the whole image (no strips): those of one rule in one multi-draw (per sign
+  // of the weight, into the stencil), each object's transform from a storage buffer; else one by
+  // one.
+  void count_volumes(std::size_t light, std::span<const std::uint32_t> objects) override;
+  void set_batching(bool on) { batching_ = on; }
   void end_group(std::size_t) override {}  // each count adds its group's log transmittance
   void end_counts() override;
   void read_mask(std::size_t light, SurfaceLayer& layer) override;
@@ -135,6 +140,19 @@ class GlBackend final : public FrameBackend {
   // The count passes' programs: [0] over the whole image, [1] with the strips' fragment test.
   Object volume_cpu_[2], volume_gpu_[2], light_map_cpu_[2], light_map_gpu_[2];
   Object cover_, see_through_, background_, resolve_, query_;
+  Object volume_batch_, light_map_batch_;  // count_volumes' programs (kVolumeBatchVertex)
+  Object depth_batch_;                     // draw_depth's (kSurfaceBatchVertex)
+  // The frame's meshes in one vertex and one index buffer, for draw_depth's multi-draws: per
+  // mesh its base vertex and first index; remade when the meshes change.
+  struct SceneGeometry;
+  std::unique_ptr<SceneGeometry> geometry_;
+  std::uint64_t mesh_serial_ = 0;
+  void make_scene_geometry();
+  // count_volumes' storage: the volumes copied into one buffer, per object its transform and
+  // mirror, the draws, and the object index per instance (0, 1, 2, ...).
+  struct Batch;
+  std::unique_ptr<Batch> batch_;
+  bool batching_ = true;
   Object empty_vao_;
   Object fill_query_ = make_query(GL_SAMPLES_PASSED);
   std::unique_ptr<Targets> targets_;

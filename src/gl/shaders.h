@@ -106,6 +106,36 @@ void main() {
 }
 )";
 
+// The opaque depth pass of many objects in one multi-draw (GlBackend::draw_depth): each draw is
+// one object, its index the draw's base instance, which picks its transform, first face id and
+// albedo. The same product, mvp * p, as to_clip's.
+inline constexpr const char* kSurfaceBatchVertex = R"(#version 450 core
+struct Object { mat4 mvp; uvec4 first_id; vec4 albedo; };
+layout(std430, binding = 4) readonly buffer Objects { Object objects[]; };
+layout(location = 0) in vec4 position;  // w = 1
+layout(location = 2) in uint object;
+flat out uint object_first_id;
+flat out vec3 object_albedo;
+invariant gl_Position;
+void main() {
+  object_first_id = objects[object].first_id.x;
+  object_albedo = objects[object].albedo.rgb;
+  precise vec4 c = objects[object].mvp * position;
+  gl_Position = c;
+}
+)";
+inline constexpr const char* kDepthBatchFragment = R"(#version 450 core
+flat in uint object_first_id;
+flat in vec3 object_albedo;
+layout(location = 12) uniform vec3 ambient;
+layout(location = 0) out uint id;
+layout(location = 1) out vec4 color;
+void main() {
+  id = object_first_id + uint(gl_PrimitiveID) + 1u;
+  color = vec4(ambient * object_albedo, 1.0);
+}
+)";
+
 // One light where the count is 0: by the stencil test, or by reading the additive count target;
 // with transparent casters, times the light that passes them, exp of the log light map. Only
 // on the face the depth pass left visible: coincident faces pass the equal-depth test too.
@@ -152,6 +182,25 @@ invariant gl_Position;
 void main() {
   primitive_weight = weight;
   gl_Position = to_clip(position);
+}
+)";
+
+// CPU volumes of many objects in one draw (GlBackend::count_volumes): each draw of a
+// multi-draw is one object's volume, its index the draw's base instance (`object`, a per-instance
+// attribute), which picks its transform and mirror sign. The same product, mvp * p, as to_clip's,
+// so that a light cap keeps its surface's depths.
+inline constexpr const char* kVolumeBatchVertex = R"(#version 450 core
+struct Object { mat4 mvp; ivec4 mirror; };
+layout(std430, binding = 3) readonly buffer Objects { Object objects[]; };
+layout(location = 0) in vec4 position;  // w = 0 at infinity
+layout(location = 1) in int weight;
+layout(location = 2) in uint object;
+flat out int primitive_weight;
+invariant gl_Position;
+void main() {
+  primitive_weight = weight * objects[object].mirror.x;
+  precise vec4 c = objects[object].mvp * position;
+  gl_Position = c;
 }
 )";
 

@@ -44,6 +44,31 @@ TEST(GlBackend, ReusesUploadedVolumesAndLeavesNoGlError) {
   EXPECT_EQ(fresh->render(*scene, options).shadowed, third.shadowed);
 }
 
+// The opaque depth pass in one multi-draw (GlBackend::draw_depth) and CPU volumes in multi-draws
+// (count_volumes: per rule, per sign into the stencil, every weight into the additive target)
+// give the ids, the image, the masks, the light map and the fill and stencil writes of drawing
+// object by object, and no OpenGL error.
+TEST(GlBackend, BatchedVolumesCountAsVolumeByVolume) {
+  for (const CountTarget target : {CountTarget::stencil, CountTarget::additive})
+    for (const char* name : {"demo", "camera-in-shadow", "glass", "nonmanifold", "city:48"}) {
+      const Scene scene = *builtin_scene(name);
+      RenderOptions options{160, 90, Method::automatic, Generator::automatic};
+      options.count_fill = true;
+      auto batched = make({VolumePath::cpu, target}), apart = make({VolumePath::cpu, target});
+      ASSERT_TRUE(batched && apart);
+      gl_of(*apart).set_batching(false);
+      const Frame a = batched->render(scene, options), b = apart->render(scene, options);
+      EXPECT_EQ(take_error(), "") << name;
+      EXPECT_EQ(a.object, b.object) << name;  // the ids of one multi-draw's faces
+      EXPECT_EQ(a.face, b.face) << name;
+      EXPECT_EQ(a.image.rgba, b.image.rgba) << name;
+      EXPECT_EQ(a.shadowed, b.shadowed) << name;
+      EXPECT_EQ(a.glass.transmitted, b.glass.transmitted) << name;
+      EXPECT_EQ(a.stats.fill, b.stats.fill) << name;
+      EXPECT_EQ(a.stats.stencil_writes, b.stats.stencil_writes) << name;
+    }
+}
+
 TEST(GlBackend, SwitchingVolumePathsKeepsTheShadows) {
   auto scene = builtin_scene("nonmanifold");
   ASSERT_TRUE(scene.ok());
