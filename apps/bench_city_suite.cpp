@@ -10,6 +10,7 @@
 
 #include "bench_suite.h"
 #include "cli.h"
+#include "core/shapes.h"
 #include "plot.h"
 #include "scene/city.h"
 #include "scene/scene.h"
@@ -59,6 +60,43 @@ std::size_t triangles_of(const Scene& scene) {
   std::size_t n = 0;
   for (const SceneObject& o : scene.objects) n += o.mesh->triangle_count();
   return n;
+}
+
+// The city with its buildings merged into one mesh (the other objects as they are): what a user
+// who merges a scene to save draws would give the renderer.
+Scene merged_buildings(const Scene& city) {
+  Scene merged = city;
+  merged.objects.clear();
+  Mesh buildings;
+  for (const SceneObject& o : city.objects) {
+    if (!o.name.starts_with("building")) {
+      merged.objects.push_back(o);
+      continue;
+    }
+    Mesh placed = *o.mesh;
+    for (glm::vec3& p : placed.positions) p = glm::vec3(o.transform * glm::vec4(p, 1.0f));
+    append_mesh(buildings, placed);
+  }
+  merged.objects.push_back(
+      make_object("buildings", std::move(buildings), glm::mat4(1.0f), {0.7f, 0.7f, 0.7f}));
+  return merged;
+}
+
+// Mean wall-clock ms of frames 1 .. frames of `scene` after one warm-up, measuring taken off.
+double mean_frame_ms(Renderer& renderer, const Scene& scene, const RenderOptions& options,
+                     int frames) {
+  Frame frame;
+  renderer.render(scene, options, frame);
+  double sum = 0.0;
+  for (int f = 0; f < frames; ++f) {
+    const Scene at = scene_at_frame(scene, f + 1);
+    const auto start = std::chrono::steady_clock::now();
+    renderer.render(at, options, frame);
+    sum += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+               .count() -
+           frame.stats.ms_measuring;
+  }
+  return sum / frames;
 }
 
 }  // namespace
@@ -203,6 +241,31 @@ int run_city_suite(const CitySuiteOptions& options) {
   json["scaling"] = {{"buildings_factor", buildings_factor},
                      {"street_culled_frame_factor", time_factor}};
   json["goal_met"] = {{"reduction", reduction_met}, {"scaling", scaling_met}};
+
+  // Batches: the smallest city drawn as its objects and with its buildings merged into one mesh,
+  // on the street path without culling: many objects should cost what one mesh of them costs.
+  {
+    const Scene city = make_city(options.sizes.front(), CityView::street);
+    const Scene merged = merged_buildings(city);
+    status.show("batches: " + city.name + " as objects and as one mesh");
+    RenderOptions o = base;
+    o.count_fill = false;
+    std::unique_ptr<Renderer> a = make(), b = make();
+    if (!a || !b) return 1;
+    const double objects_ms = mean_frame_ms(*a, city, o, options.frames);
+    const double mesh_ms = mean_frame_ms(*b, merged, o, options.frames);
+    status.clear();
+    std::fprintf(table,
+                 "batches (street, %d buildings, no culling): %zu objects %.1f ms a frame, the "
+                 "buildings as one mesh %.1f ms: %.2fx\n",
+                 options.sizes.front(), city.objects.size(), objects_ms, mesh_ms,
+                 objects_ms / std::max(mesh_ms, 1e-9));
+    json["batches"] = {{"buildings", options.sizes.front()},
+                       {"objects", city.objects.size()},
+                       {"ms_frame_objects", objects_ms},
+                       {"ms_frame_one_mesh", mesh_ms},
+                       {"objects_over_one_mesh", objects_ms / std::max(mesh_ms, 1e-9)}};
+  }
 
   std::string sizes_label;
   for (const int b : options.sizes)
