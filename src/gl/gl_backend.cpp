@@ -162,43 +162,61 @@ struct GlBackend::VolumeUpload {
   Object buffer = make_buffer();
   Object vao = make_vertex_array();
   struct Group {
+    bool zfail;  // counted by z-fail (else z-pass)
     std::int32_t weight;
     GLint first;
     GLsizei count;
   };
-  std::vector<Group> groups;
+  std::vector<Group> groups;  // the z-pass groups first
   GLsizei vertices = 0;
+  GLsizei zfail_first = 0;   // the z-fail groups' vertices are [zfail_first, vertices)
   bool unit_weights = true;  // every weight +-1
+  // What it was uploaded for: the rule per part changes with the view, not the volume.
+  bool zfail = false;
+  std::vector<std::uint8_t> part_zfail;
 
-  void upload(const VolumeBuffer& volume, bool light_caps, bool dark_caps);
+  // The primitives the plan counts, each by its rule (the volume's, or its part's), grouped by
+  // rule and weight.
+  void upload(const VolumeBuffer& volume, const VolumePlan& plan);
+  bool made_for(const VolumePlan& plan) const {
+    return zfail == (plan.rule == VolumeRule::zfail) && part_zfail == plan.part_zfail;
+  }
 };
 
-void GlBackend::VolumeUpload::upload(const VolumeBuffer& volume, bool light_caps, bool dark_caps) {
-  std::map<std::int32_t, std::vector<VolumeVertex>> by_weight;
-  auto add = [&](const PrimitiveList& list, int corners) {
+void GlBackend::VolumeUpload::upload(const VolumeBuffer& volume, const VolumePlan& plan) {
+  zfail = plan.rule == VolumeRule::zfail;
+  part_zfail = plan.part_zfail;
+  std::map<std::pair<bool, std::int32_t>, std::vector<VolumeVertex>> by_rule_and_weight;
+  // `everywhere`: the list counts under either rule (else only where z-fail does: caps).
+  auto add = [&](const PrimitiveList& list, int corners, bool everywhere) {
     const int per = corners == kQuadCorners ? 2 : 1;
     for (std::size_t p = 0; p < list.size(); ++p) {
       const std::int32_t w = list.weights[p];
-      if (w == 0) continue;
-      std::vector<VolumeVertex>& out = by_weight[w];
+      const bool by_zfail = plan.by_part_rule() ? plan.part_zfail[list.parts[p]] != 0 : zfail;
+      if (w == 0 || (!everywhere && !by_zfail)) continue;
+      std::vector<VolumeVertex>& out = by_rule_and_weight[{by_zfail, w}];
       const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
       for (int t = 0; t < per; ++t)
         for (int k = 0; k < 3; ++k) out.push_back({v[kQuadTriangles[3 * t + k]], w});
     }
   };
-  add(volume.sides, kQuadCorners);
-  if (light_caps) add(volume.light_caps, kTriangleCorners);
-  if (dark_caps) add(volume.dark_caps, kTriangleCorners);
+  add(volume.sides, kQuadCorners, true);
+  add(volume.light_caps, kTriangleCorners, plan.light_caps_everywhere);
+  add(volume.dark_caps, kTriangleCorners, plan.dark_caps_everywhere());
   std::vector<VolumeVertex> all;
   groups.clear();
   unit_weights = true;
-  for (auto& [weight, vertices] : by_weight) {
+  zfail_first = -1;
+  for (auto& [key, vertices] : by_rule_and_weight) {
+    const auto [by_zfail, weight] = key;
+    if (by_zfail && zfail_first < 0) zfail_first = static_cast<GLsizei>(all.size());
     groups.push_back(
-        {weight, static_cast<GLint>(all.size()), static_cast<GLsizei>(vertices.size())});
+        {by_zfail, weight, static_cast<GLint>(all.size()), static_cast<GLsizei>(vertices.size())});
     all.insert(all.end(), vertices.begin(), vertices.end());
     unit_weights = unit_weights && (weight == 1 || weight == -1);
   }
   vertices = static_cast<GLsizei>(all.size());
+  if (zfail_first < 0) zfail_first = vertices;
   buffer = make_buffer();  // storage is immutable: a new buffer per upload
   glNamedBufferStorage(
       buffer.get(),
@@ -732,10 +750,8 @@ void GlBackend::volumes_ready(std::size_t l, const std::vector<std::uint8_t>& re
     }
     const bool fresh = !uploads[o];
     if (fresh) uploads[o] = std::make_unique<VolumeUpload>();
-    const bool zfail = v.rule == VolumeRule::zfail;
-    if (fresh || rebuilt[o])
-      uploads[o]->upload(in_->volumes.volume(l, o), zfail || v.light_caps_everywhere,
-                         zfail || v.dark_caps_everywhere());
+    if (fresh || rebuilt[o] || !uploads[o]->made_for(v))
+      uploads[o]->upload(in_->volumes.volume(l, o), v);
     if (!plan.transparent(o)) unit_weights_ = unit_weights_ && uploads[o]->unit_weights;
   }
 }
@@ -770,34 +786,40 @@ void count_state(bool additive, Rule rule, int sign) {
 void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
   const FramePlan& plan = in_->plan;
   const VolumePlan& v = plan.volume(l, o);
-  const Rule rule = v.rule == VolumeRule::zfail ? Rule::zfail : Rule::zpass;
-  // z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: clamp rather
-  // than clip. (z-pass keeps near-plane clipping, as the software backend does.)
-  if (rule == Rule::zfail)
-    glEnable(GL_DEPTH_CLAMP);
-  else
-    glDisable(GL_DEPTH_CLAMP);
   const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
   glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
   const int mirror = plan.objects[o].weight_sign;
-  // The draws of the volume: into the target, or (all) every primitive once, for its fill.
-  std::function<void()> draw, draw_all;
+  // The volume's primitives of one rule: all of them, or (CPU volumes under rules per part) those
+  // of the parts of that rule.
+  struct Range {
+    Rule rule;
+    GLint first = 0;
+    GLsizei count = 0;
+  };
+  std::vector<Range> ranges;
+  // The draws of a range: into the target, or (all) every primitive once, for its fill.
+  std::function<void(const Range&)> draw, draw_all;
   if (cpu_) {
     const VolumeUpload* up = uploads_[l][o].get();
     glBindVertexArray(up->vao.get());
-    draw = [up, additive, rule, mirror] {
+    ranges = {{Rule::zpass, 0, up->zfail_first},
+              {Rule::zfail, up->zfail_first, up->vertices - up->zfail_first}};
+    draw = [up, additive, mirror](const Range& range) {
       if (additive) {
-        count_state(true, rule, mirror);
-        glDrawArrays(GL_TRIANGLES, 0, up->vertices);
+        count_state(true, range.rule, mirror);
+        glDrawArrays(GL_TRIANGLES, range.first, range.count);
         return;
       }
       for (const VolumeUpload::Group& g : up->groups) {
-        count_state(false, rule, g.weight > 0 ? mirror : -mirror);
+        if (g.zfail != (range.rule == Rule::zfail)) continue;
+        count_state(false, range.rule, g.weight > 0 ? mirror : -mirror);
         for (int k = 0; k < std::abs(g.weight); ++k) glDrawArrays(GL_TRIANGLES, g.first, g.count);
       }
     };
-    draw_all = [up] { glDrawArrays(GL_TRIANGLES, 0, up->vertices); };
+    draw_all = [](const Range& range) { glDrawArrays(GL_TRIANGLES, range.first, range.count); };
   } else {
+    const Rule rule = v.rule == VolumeRule::zfail ? Rule::zfail : Rule::zpass;
+    ranges = {{rule, 0, 1}};
     const bool robust = v.build.generator != Generator::standard;
     MeshBuffers* m = frame_meshes_[o];
     if (!m->adjacency_vao) m->build_adjacency();
@@ -812,20 +834,20 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
       glUniform1i(glsl::kEmit, mode);
       glDrawElements(GL_TRIANGLES_ADJACENCY, m->adjacency_index_count, GL_UNSIGNED_INT, nullptr);
     };
-    draw = [additive, robust, emit, rule, mirror] {
+    draw = [additive, robust, emit, mirror](const Range& range) {
       if (additive) {
-        count_state(true, rule, mirror);
+        count_state(true, range.rule, mirror);
         emit(glsl::kEmitWeighted);
         return;
       }
-      count_state(false, rule, mirror);
+      count_state(false, range.rule, mirror);
       emit(glsl::kEmitPositive);
-      if (robust && rule == Rule::zfail) {
-        count_state(false, rule, -mirror);
+      if (robust && range.rule == Rule::zfail) {
+        count_state(false, range.rule, -mirror);
         emit(glsl::kEmitNegative);
       }
     };
-    draw_all = [emit] { emit(glsl::kEmitWeighted); };
+    draw_all = [emit](const Range&) { emit(glsl::kEmitWeighted); };
   }
   // Once per strip of discrete clamping (the fragment test's bounds), or once.
   const std::size_t runs = std::max<std::size_t>(v.strips.size(), 1);
@@ -837,8 +859,18 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
       glUniform2f(glsl::kStripBounds, std::max(strip.lo, -kUnbounded),
                   std::min(strip.hi, kUnbounded));
     }
-    draw();
-    if (in_->options.count_fill) measure_fill(rule == Rule::zpass, draw_all);
+    for (const Range& range : ranges) {
+      if (range.count == 0) continue;
+      // z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: clamp rather
+      // than clip. (z-pass keeps near-plane clipping, as the software backend does.)
+      if (range.rule == Rule::zfail)
+        glEnable(GL_DEPTH_CLAMP);
+      else
+        glDisable(GL_DEPTH_CLAMP);
+      draw(range);
+      if (in_->options.count_fill)
+        measure_fill(range.rule == Rule::zpass, [&] { draw_all(range); });
+    }
   }
 }
 
@@ -1029,11 +1061,15 @@ void GlBackend::count_volumes(std::size_t l, std::span<const std::uint32_t> obje
       glCopyNamedBufferSubData(up.buffer.get(), b.vertices.get(), 0,
                                next * GLintptr(sizeof(VolumeVertex)),
                                up.vertices * GLsizeiptr(sizeof(VolumeVertex)));
-    const bool zfail = plan.volume(l, o).rule == VolumeRule::zfail;
-    b.whole[zfail].push_back({GLuint(up.vertices), 1, GLuint(next), slot});
+    // Its z-pass and its z-fail primitives (a volume of one rule has one kind; under rules per
+    // part, both).
+    if (up.zfail_first > 0) b.whole[0].push_back({GLuint(up.zfail_first), 1, GLuint(next), slot});
+    if (up.vertices > up.zfail_first)
+      b.whole[1].push_back(
+          {GLuint(up.vertices - up.zfail_first), 1, GLuint(next + up.zfail_first), slot});
     for (const VolumeUpload::Group& g : up.groups)  // the stencil: |weight| draws of each
       for (int k = 0; k < std::abs(g.weight); ++k)
-        b.draws[zfail][(g.weight > 0 ? mirror : -mirror) < 0].push_back(
+        b.draws[g.zfail][(g.weight > 0 ? mirror : -mirror) < 0].push_back(
             {GLuint(g.count), 1, GLuint(next + g.first), slot});
     next += up.vertices;
   }
