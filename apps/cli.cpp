@@ -117,8 +117,9 @@ auto parsed(const char* option, const std::string& value, Parse&& parse) -> decl
 
 }  // namespace
 
-Expected<ResolvedFrame> resolve(const FrameArgs& args) {
-  auto loaded = load_scene(args.scene);
+Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scene) {
+  auto loaded =
+      scene ? Expected<LoadedScene>(LoadedScene{std::move(*scene), {}}) : load_scene(args.scene);
   if (!loaded) return loaded.error();
   for (const std::string& w : loaded->warnings) warn(w);
   auto method = parsed("--method", args.method, parse_method);

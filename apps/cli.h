@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,7 +67,7 @@ struct ResolvedFrame {
   Backend backend = Backend::soft;
   gl::GlSettings gl;
 };
-Expected<ResolvedFrame> resolve(const FrameArgs& args);
+Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scene = {});
 
 // The renderer for frames of `options`; prints which backend `auto` took and why.
 Expected<std::unique_ptr<Renderer>> make_frame_renderer(const ResolvedFrame& frame,

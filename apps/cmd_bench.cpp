@@ -17,6 +17,7 @@
 #include "render/frame_json.h"
 #include "render/frame_timing.h"
 #include "scene/city.h"
+#include "scene/stage.h"
 
 namespace shadowvol::cli {
 namespace {
@@ -27,6 +28,7 @@ struct BenchArgs {
   int frames = 10;
   std::string json_file, suite, csv, plot;
   std::vector<int> city_sizes;
+  std::vector<std::string> stages;  // --stage: timed instead of the scenes
   CLI::App* cmd = nullptr;
   CLI::Option* json = nullptr;
   bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
@@ -48,10 +50,17 @@ int bench(const BenchArgs& args) {
   nlohmann::json out = nlohmann::json::array();
   const bool json = args.json->count() > 0;
   StatusLine status;
-  for (const std::string& name : args.scenes) {
+  const bool stages = !args.stages.empty();
+  for (const std::string& name : stages ? args.stages : args.scenes) {
     FrameArgs frame = args.frame;
     frame.scene = name;
-    auto resolved = resolve(frame);
+    std::optional<Scene> stage;
+    if (stages) {
+      auto made = load_stage(name);
+      if (!made) return fail(made.error().message);
+      stage = std::move(*made);
+    }
+    auto resolved = resolve(frame, std::move(stage));
     if (!resolved) return fail(resolved.error().message);
     const RenderOptions& options = resolved->options;
     // Each renderer is made once and keeps its volumes and buffers from scene to scene; the
@@ -261,6 +270,10 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->remove_option(cmd->get_option("--scene"));
   cmd->add_option("--scenes", args->scenes, "Scenes to time (names, .json files or meshes)")
       ->capture_default_str();
+  cmd->add_option("--stage", args->stages,
+                  "Time these meshes on the benchmark stage instead of --scenes: a mesh file, "
+                  "sphere:N (a UV sphere of 2 N^2 triangles) or cad (a CAD-like assembly of "
+                  "about 150,000 triangles); the stage: docs/performance.md");
   cmd->add_option("--frames", args->frames, "Frames to time per scene, after one warm-up")
       ->capture_default_str();
   args->json = cmd->add_option("--json", args->json_file,

@@ -12,6 +12,7 @@
 #include "core/shapes.h"
 #include "core/volume.h"
 #include "scene/mesh_io.h"
+#include "scene/stage.h"
 
 namespace shadowvol {
 namespace {
@@ -320,6 +321,11 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
 }
 
 Expected<LoadedScene> load_scene(const std::string& name) {
+  if (name.starts_with("stage:")) {
+    auto stage = load_stage(name.substr(6));
+    if (!stage) return stage.error();
+    return LoadedScene{std::move(*stage), {}};
+  }
   auto builtin = builtin_scene(name);
   if (builtin) return LoadedScene{std::move(*builtin), {}};
   std::error_code ec;

@@ -21,7 +21,8 @@ struct LoadedScene {
   Scene scene;
   std::vector<std::string> warnings;  // what reading a mesh file passed over (mesh_io.h)
 };
-// A built-in scene by name (builtin_scene), else a scene file (.json) or a mesh file that exists
+// `stage:NAME`: the benchmark stage of NAME (scene/stage.h: sphere:N, cad or a mesh file); else
+// a built-in scene by name (builtin_scene), else a scene file (.json) or a mesh file that exists
 // (any format mesh_io reads), the mesh on default_stage under its file name. An unknown name
 // that names no file is refused with the built-in names listed.
 Expected<LoadedScene> load_scene(const std::string& name);
