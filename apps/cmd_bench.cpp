@@ -18,6 +18,7 @@
 #include "render/frame_timing.h"
 #include "scene/city.h"
 #include "scene/stage.h"
+#include "trace/embree_baseline.h"
 
 namespace shadowvol::cli {
 namespace {
@@ -29,6 +30,7 @@ struct BenchArgs {
   std::string json_file, suite, csv, plot;
   std::vector<int> city_sizes;
   std::vector<std::string> stages;  // --stage: timed instead of the scenes
+  std::string versus;               // --versus: embree
   CLI::App* cmd = nullptr;
   CLI::Option* json = nullptr;
   bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
@@ -38,6 +40,50 @@ struct BenchArgs {
 Scene all_opaque(Scene scene) {
   for (SceneObject& object : scene.objects) object.material.opacity = 1.0f;
   return scene;
+}
+
+// Embree's frame of the same scene and size (trace/embree_baseline.h), with its BVH built in
+// the frame and kept from frame to frame, and the hybrid's shadow rays alone; the ratios of
+// shadowvol's frame and of its volumes and counts to them.
+struct Versus {
+  nlohmann::json json;
+  std::string text;
+};
+Expected<Versus> versus_embree(const Scene& scene, const RenderOptions& options, int frames,
+                               double frame_ms, double volumes_counts_ms) {
+  auto embree = EmbreeBaseline::create();
+  if (!embree) return embree.error();
+  double build_ms = 0.0, built = 0.0, primary = 0.0, shadow = 0.0;
+  for (int f = 0; f <= frames; ++f) {  // frame 0 warms up
+    double ms = 0.0;
+    if (auto ok = (*embree)->build(scene, ms); !ok) return ok.error();
+    const EmbreeFrame e = (*embree)->trace(scene, options.width, options.height);
+    if (f == 0) continue;
+    built += ms;
+    primary += e.ms_primary;
+    shadow += e.ms_shadow;
+  }
+  build_ms = built / frames, primary /= frames, shadow /= frames;
+  const double kept = primary + shadow, with_build = build_ms + kept;
+  Versus v;
+  v.json = {{"bvh_build_ms", build_ms},
+            {"primary_ms", primary},
+            {"shadow_ms", shadow},
+            {"frame_bvh_built_ms", with_build},
+            {"frame_bvh_kept_ms", kept},
+            {"frame_over_embree_built", frame_ms / with_build},
+            {"frame_over_embree_kept", frame_ms / kept},
+            {"volumes_counts_over_shadow_rays_kept", volumes_counts_ms / shadow},
+            {"volumes_counts_over_shadow_rays_built", volumes_counts_ms / (build_ms + shadow)}};
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "%-16s embree: BVH %.2f + primary %.2f + shadow %.2f ms; frame / embree's: "
+                "%.2fx (BVH built), %.2fx (kept); volumes + counts / shadow rays: %.2fx (kept), "
+                "%.2fx (built)\n",
+                "", build_ms, primary, shadow, frame_ms / with_build, frame_ms / kept,
+                volumes_counts_ms / shadow, volumes_counts_ms / (build_ms + shadow));
+  v.text = line;
+  return v;
 }
 
 // Frame times of scenes on one backend: the mean over `frames` frames after one warm-up frame
@@ -106,6 +152,14 @@ int bench(const BenchArgs& args) {
       row["count_pass"] = to_json(sum.counts, args.frames);
       row["split_sampling"] = to_json(sum.split_sampling, args.frames);
     }
+    std::string versus_text;  // printed under the frame's line
+    if (args.versus == "embree") {
+      auto versus = versus_embree(resolved->scene, options, args.frames, t[0].frame_ms,
+                                  (sum.ms_volumes + sum.ms_counts) / n);
+      if (!versus) return fail(versus.error().message);
+      row["versus_embree"] = versus->json;
+      versus_text = versus->text;
+    }
     if (json) {
       out.push_back(row);
       continue;
@@ -120,6 +174,7 @@ int bench(const BenchArgs& args) {
       std::printf("%-16s %s %dx%d: %7.2f ms a frame all opaque: transparency costs %.2fx\n", "",
                   backend.c_str(), options.width, options.height, t[1].frame_ms,
                   t[0].frame_ms / t[1].frame_ms);
+    std::printf("%s", versus_text.c_str());
   }
   if (json) std::cout << out.dump(2) << "\n";
   return 0;
@@ -250,6 +305,8 @@ int suite(const BenchArgs& args) {
 }
 
 int run(const BenchArgs& args) {
+  if (!args.versus.empty() && args.versus != "embree")
+    return fail("--versus: unknown baseline '" + args.versus + "': expected embree");
   if (args.given("--city-sizes") && args.suite != "city")
     return fail("--city-sizes needs --suite city");
   if (!args.suite.empty() || !args.csv.empty() || !args.plot.empty()) return suite(args);
@@ -274,6 +331,10 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "Time these meshes on the benchmark stage instead of --scenes: a mesh file, "
                   "sphere:N (a UV sphere of 2 N^2 triangles) or cad (a CAD-like assembly of "
                   "about 150,000 triangles); the stage: docs/performance.md");
+  cmd->add_option("--versus", args->versus,
+                  "Also time Embree on the same scene and size: embree (primary and shadow rays "
+                  "in 8-wide packets over every thread, its BVH built in the frame and kept), "
+                  "and print the ratios");
   cmd->add_option("--frames", args->frames, "Frames to time per scene, after one warm-up")
       ->capture_default_str();
   args->json = cmd->add_option("--json", args->json_file,

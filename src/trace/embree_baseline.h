@@ -1,0 +1,44 @@
+// shadowvol trace: Embree used as a CPU renderer of hard shadows would use it, timed: the
+// baseline `bench --versus embree` measures shadowvol's frame against (issue 22).
+//
+// Owns: an Embree device and scene of the opaque objects in eye-relative space, built with the
+// flags and quality a renderer that rebuilds per frame picks (dynamic scene, medium quality), and
+// the frame: primary rays through every pixel centre in coherent 8-wide packets (2 x 4 pixels),
+// then one shadow ray per hit and light, in packets of the same 8, occluded-only queries; tiles
+// of 32 x 32 pixels spread over oneTBB's threads. Transparent casters are traced as opaque.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "core/expected.h"
+#include "scene/scene.h"
+
+namespace shadowvol {
+
+struct EmbreeFrame {
+  double ms_build = 0, ms_primary = 0, ms_shadow = 0;
+  std::uint64_t hits = 0, shadowed = 0;  // pixels that see a surface; (pixel, light) in shadow
+};
+
+class EmbreeBaseline {
+ public:
+  static Expected<std::unique_ptr<EmbreeBaseline>> create();
+  ~EmbreeBaseline();
+  // Builds the BVH of the scene's objects as they stand (replacing the last), timed into ms.
+  Expected<void> build(const Scene& scene, double& ms);
+  // Primary and shadow rays of a width x height frame of `scene` (the scene built last).
+  EmbreeFrame trace(const Scene& scene, int width, int height);
+  // The hybrid an engine would write: shadow rays alone, from the points a depth pass left
+  // (eye-relative, one per pixel, w = 0 where no surface), to every light. Returns the time.
+  double shadow_rays(const Scene& scene, std::span<const glm::vec4> points,
+                     std::uint64_t& shadowed);
+
+ private:
+  struct State;
+  explicit EmbreeBaseline(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace shadowvol
