@@ -10,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
@@ -428,27 +429,44 @@ void SoftBackend::shade() {
   frame.image.width = w;
   frame.image.height = h;
   frame.image.rgba.resize(pixels * 4);
-  world_.resize(scene.objects.size());  // vertices, once per frame
+  // The unit normals of the faces of every object the frame shows, eye-relative, once per frame:
+  // per pixel, a lookup.
+  seen_.assign(scene.objects.size(), 0);
+  for (const SurfaceLayer* layer :
+       {static_cast<const SurfaceLayer*>(&frame), static_cast<const SurfaceLayer*>(&frame.glass)})
+    for (const std::int32_t o : layer->object)
+      if (o >= 0) seen_[static_cast<std::size_t>(o)] = 1;
+  normals_.resize(scene.objects.size());
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-    const SceneObject& object = scene.objects[o];
-    world_[o].clear();
-    for (const glm::vec3& p : object.mesh->positions)
-      world_[o].push_back(glm::vec3(plan.objects[o].model * glm::vec4(p, 1.0f)));
+    if (!seen_[o]) continue;
+    const Mesh& mesh = *scene.objects[o].mesh;
+    const glm::mat4& model = plan.objects[o].model;
+    std::vector<glm::vec3>& normals = normals_[o];
+    normals.resize(mesh.triangle_count());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, normals.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t f = r.begin(); f < r.end(); ++f) {
+                          const std::uint32_t* v = &mesh.indices[3 * f];
+                          const glm::vec3 a(model * glm::vec4(mesh.positions[v[0]], 1.0f));
+                          const glm::vec3 b(model * glm::vec4(mesh.positions[v[1]], 1.0f));
+                          const glm::vec3 c(model * glm::vec4(mesh.positions[v[2]], 1.0f));
+                          const glm::vec3 n = glm::cross(b - a, c - a);
+                          const float len = glm::length(n);
+                          normals[f] = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+                        }
+                      });
   }
-  const glm::dmat4 inv_vp(plan.inv_view_proj);
+  const glm::mat4 inv_vp(plan.inv_view_proj);
   auto shade_at = [&](const SurfaceLayer& layer, std::span<const float> depth, int x, int y,
                       std::size_t p) {
     const auto o = static_cast<std::size_t>(layer.object[p]);
     const SceneObject& object = scene.objects[o];
-    const std::uint32_t* f = &object.mesh->indices[3 * static_cast<std::size_t>(layer.face[p])];
-    const glm::vec3& a = world_[o][f[0]];
-    glm::vec3 n = glm::cross(world_[o][f[1]] - a, world_[o][f[2]] - a);
-    const float len = glm::length(n);
-    n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
-    const glm::dvec4 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0, double(depth[p]),
-                         1.0);
-    const glm::dvec4 at = inv_vp * ndc;
-    const glm::vec3 pos = glm::vec3(glm::dvec3(at) / at.w);
+    glm::vec3 n = normals_[o][layer.face[p]];
+    // The surface's point, from its pixel and depth (eye-relative, float: it only aims the light).
+    const glm::vec4 at =
+        inv_vp * glm::vec4((float(x) + 0.5f) / float(w) * 2.0f - 1.0f,
+                           1.0f - (float(y) + 0.5f) / float(h) * 2.0f, depth[p], 1.0f);
+    const glm::vec3 pos = glm::vec3(at) / at.w;
     const glm::vec3 to_eye = glm::normalize(-pos);  // the eye is the origin
     if (glm::dot(n, to_eye) < 0.0f) n = -n;         // two-sided: light the side we see
     const glm::vec3 albedo = object.material.color;
@@ -461,8 +479,8 @@ void SoftBackend::shade() {
           glm::normalize(lp.w != 0.0f ? glm::vec3(lp) / lp.w - pos : glm::vec3(lp));
       const float lambert = glm::dot(n, to_light);
       if (lambert <= 0.0f) continue;
-      const float spec = std::pow(std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))),
-                                  shading::kShininess);
+      const float spec =
+          shading::specular_power(std::max(0.0f, glm::dot(n, glm::normalize(to_light + to_eye))));
       const glm::vec3 arriving =
           layer.transmitted.empty() ? glm::vec3(1.0f) : layer.transmitted[l][p];
       color += light.color * light.intensity * arriving *

@@ -92,7 +92,7 @@ class SoftBackend final : public FrameBackend {
   // whether only z-fail counts it) and the triangles grouped by it.
   std::vector<glm::vec4> tris_, prefill_tris_;
   std::vector<std::int32_t> weights_, prefill_weights_;
-  std::vector<std::uint32_t> ids_;     // a depth batch's id per triangle
+  std::vector<std::uint32_t> ids_;  // a depth batch's id per triangle
   // count_volumes: the volumes of one rule (z-pass, z-fail), each triangle with its bounds.
   struct Batch {
     std::vector<glm::vec4> tris;
@@ -111,7 +111,9 @@ class SoftBackend final : public FrameBackend {
   // RenderOptions::tile_work_per_object: the frame's total (the target's tile work moves into it
   // and into the object's share after each volume).
   std::vector<raster::TileWork> total_work_, shadow_work_;
-  std::vector<std::vector<glm::vec3>> world_;  // per object: its vertices, eye-relative
+  // Per object the frame shows: its faces' unit normals, eye-relative (shade).
+  std::vector<std::uint8_t> seen_;
+  std::vector<std::vector<glm::vec3>> normals_;
 };
 
 // A Renderer (the frame pipeline) on this backend.
