@@ -169,14 +169,6 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
       v.far_plane = options.extrusion == Extrusion::bounded && has_box
                         ? bounded_far_plane(op.lo, op.hi, reach_lo, reach_hi, light)
                         : kPlaneAtInfinity;
-      // Recomputed only where what it depends on changed since the last frame's plan.
-      const DepthBoundsInputs inputs{op.lo, op.hi, light, v.far_plane, plan.view_proj};
-      if (!(v.depth_bounds_of == inputs)) {
-        v.depth_bounds = has_box ? box_volume_depth_bounds(op.lo, op.hi, light, v.far_plane,
-                                                           plan.view_proj, near_rect)
-                                 : raster::DepthBounds{};
-        v.depth_bounds_of = inputs;
-      }
       const glm::vec3 centre = (op.lo + op.hi) * 0.5f;
       const bool reaches_near =
           per_object &&
@@ -225,6 +217,23 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
                          : stats.objects_split) += 1;
       stats.zfail_lights[o] += zfail;
     }
+  }
+}
+
+void plan_depth_bounds(FramePlan& plan, std::size_t light) {
+  const std::array<glm::vec3, 4> near_rect = near_rectangle(plan.inv_view_proj);
+  for (std::size_t o = 0; o < plan.objects.size(); ++o) {
+    VolumePlan& v = plan.volume(light, o);
+    const ObjectPlan& op = plan.objects[o];
+    if (v.culled) continue;
+    // Recomputed only where what it depends on changed since it was last computed.
+    const DepthBoundsInputs inputs{op.lo, op.hi, plan.lights[light], v.far_plane, plan.view_proj};
+    if (v.depth_bounds_of == inputs) continue;
+    v.depth_bounds = op.lo.x <= op.hi.x
+                         ? box_volume_depth_bounds(op.lo, op.hi, plan.lights[light], v.far_plane,
+                                                   plan.view_proj, near_rect)
+                         : raster::DepthBounds{};
+    v.depth_bounds_of = inputs;
   }
 }
 

@@ -77,10 +77,10 @@ struct VolumePlan {
   // plane beyond the scene and the near plane; else, and where no plane can end it well, the
   // plane at infinity.
   glm::vec4 far_plane = kPlaneAtInfinity;
-  // Laine 2005 §7's depth bounds: the window depths of the shadow volume of the object's
-  // bounding box (ended on the same far plane) where it meets the view frustum. The software
-  // count passes skip every pixel whose stored depth lies outside them. Empty (zmin > zmax)
-  // where the box's volume is out of view.
+  // Laine 2005 §7's depth bounds (set by plan_depth_bounds, for volumes not culled): the window
+  // depths of the shadow volume of the object's bounding box (ended on the same far plane) where it
+  // meets the view frustum. The software count passes skip every pixel whose stored depth lies
+  // outside them. Empty (zmin > zmax) where the box's volume is out of view.
   raster::DepthBounds depth_bounds;
   // What depth_bounds was computed from: a plan reused for the next frame recomputes them only
   // where these changed (each takes a shadow volume of the box).
@@ -171,6 +171,11 @@ struct FramePlan {
 void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& plan,
                 FrameStats& stats);
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
+
+// Laine 2005 §7's depth bounds (VolumePlan::depth_bounds) of light l's volumes that are not
+// culled, each recomputed only where its box, light, far plane or view changed: after culling,
+// so that a large scene pays for the volumes it draws, not for every object.
+void plan_depth_bounds(FramePlan& plan, std::size_t light);
 
 // The generator that builds an object's volume: `requested`, except that `automatic` takes
 // multiplicity for a transparent object, whose every surface must count (standard counts only

@@ -145,6 +145,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
   FrameStats& stats = in.frame.stats;
   const bool cpu = backend_->counts_cpu_volumes();
   timed(*backend_, stats.ms_volumes, [&] {
+    plan_depth_bounds(plan_, l);
     const bool built = cpu || in.options.show_volumes;
     backend_->volumes_ready(l, built ? volumes_.update(in.scene, plan_, l, stats) : none_rebuilt_);
   });
