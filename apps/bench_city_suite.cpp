@@ -10,7 +10,6 @@
 
 #include "bench_suite.h"
 #include "cli.h"
-#include "core/shapes.h"
 #include "plot.h"
 #include "scene/city.h"
 #include "scene/scene.h"
@@ -60,26 +59,6 @@ std::size_t triangles_of(const Scene& scene) {
   std::size_t n = 0;
   for (const SceneObject& o : scene.objects) n += o.mesh->triangle_count();
   return n;
-}
-
-// The city with its buildings merged into one mesh (the other objects as they are): what a user
-// who merges a scene to save draws would give the renderer.
-Scene merged_buildings(const Scene& city) {
-  Scene merged = city;
-  merged.objects.clear();
-  Mesh buildings;
-  for (const SceneObject& o : city.objects) {
-    if (!o.name.starts_with("building")) {
-      merged.objects.push_back(o);
-      continue;
-    }
-    Mesh placed = *o.mesh;
-    for (glm::vec3& p : placed.positions) p = glm::vec3(o.transform * glm::vec4(p, 1.0f));
-    append_mesh(buildings, placed);
-  }
-  merged.objects.push_back(
-      make_object("buildings", std::move(buildings), glm::mat4(1.0f), {0.7f, 0.7f, 0.7f}));
-  return merged;
 }
 
 // Mean wall-clock ms of frames 1 .. frames of `scene` after one warm-up, measuring taken off.
@@ -246,7 +225,7 @@ int run_city_suite(const CitySuiteOptions& options) {
   // on the street path without culling: many objects should cost what one mesh of them costs.
   {
     const Scene city = make_city(options.sizes.front(), CityView::street);
-    const Scene merged = merged_buildings(city);
+    const Scene merged = with_buildings_merged(city);
     status.show("batches: " + city.name + " as objects and as one mesh");
     RenderOptions o = base;
     o.count_fill = false;

@@ -212,6 +212,29 @@ Expected<void> refuse_options_not_taken(const BenchArgs& args,
   return {};
 }
 
+// A timed suite's outputs, frames, size, method and backend, as given, else the suite's own.
+template <class Suite>
+Expected<void> take_suite_options(const BenchArgs& args, Suite& suite) {
+  suite.json = args.json_file;
+  suite.csv = args.csv;
+  suite.plot = args.plot;
+  if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
+  if (args.given("--frames")) suite.frames = args.frames;
+  if (auto ok = suite_size(args, suite.width, suite.height); !ok) return ok;
+  auto method = parse_method(args.frame.method);
+  if (!method) return make_error("--method: " + method.error().message);
+  suite.method = *method;
+  auto backend = parse_backend(args.frame.backend);
+  if (!backend) return make_error("--backend: " + backend.error().message);
+  suite.backend = *backend;
+  auto volumes = gl::parse_volume_path(args.frame.volumes);
+  if (!volumes) return make_error("--volumes: " + volumes.error().message);
+  auto counts = gl::parse_count_target(args.frame.counts);
+  if (!counts) return make_error("--counts: " + counts.error().message);
+  suite.gl = {*volumes, *counts};
+  return {};
+}
+
 // `bench --suite cc`: the size, method, frames, backend, slices and light views' side as given,
 // else the suite's own.
 int cc_suite(const BenchArgs& args) {
@@ -220,23 +243,7 @@ int cc_suite(const BenchArgs& args) {
       !ok)
     return fail(ok.error().message);
   CcSuiteOptions suite;
-  suite.json = args.json_file;
-  suite.csv = args.csv;
-  suite.plot = args.plot;
-  if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
-  if (args.given("--frames")) suite.frames = args.frames;
-  if (auto ok = suite_size(args, suite.width, suite.height); !ok) return fail(ok.error().message);
-  auto method = parse_method(args.frame.method);
-  if (!method) return fail("--method: " + method.error().message);
-  suite.method = *method;
-  auto backend = parse_backend(args.frame.backend);
-  if (!backend) return fail("--backend: " + backend.error().message);
-  suite.backend = *backend;
-  auto volumes = gl::parse_volume_path(args.frame.volumes);
-  if (!volumes) return fail("--volumes: " + volumes.error().message);
-  auto counts = gl::parse_count_target(args.frame.counts);
-  if (!counts) return fail("--counts: " + counts.error().message);
-  suite.gl = {*volumes, *counts};
+  if (auto ok = take_suite_options(args, suite); !ok) return fail(ok.error().message);
   if (auto ok = check_slices(args.frame.slices); !ok)
     return fail("--slices: " + ok.error().message);
   suite.slices = args.frame.slices;
@@ -253,23 +260,7 @@ int city_suite(const BenchArgs& args) {
       !ok)
     return fail(ok.error().message);
   CitySuiteOptions suite;
-  suite.json = args.json_file;
-  suite.csv = args.csv;
-  suite.plot = args.plot;
-  if (args.json->count() > 0 && args.json_file.empty()) suite.json = "-";
-  if (args.given("--frames")) suite.frames = args.frames;
-  if (auto ok = suite_size(args, suite.width, suite.height); !ok) return fail(ok.error().message);
-  auto method = parse_method(args.frame.method);
-  if (!method) return fail("--method: " + method.error().message);
-  suite.method = *method;
-  auto backend = parse_backend(args.frame.backend);
-  if (!backend) return fail("--backend: " + backend.error().message);
-  suite.backend = *backend;
-  auto volumes = gl::parse_volume_path(args.frame.volumes);
-  if (!volumes) return fail("--volumes: " + volumes.error().message);
-  auto counts = gl::parse_count_target(args.frame.counts);
-  if (!counts) return fail("--counts: " + counts.error().message);
-  suite.gl = {*volumes, *counts};
+  if (auto ok = take_suite_options(args, suite); !ok) return fail(ok.error().message);
   if (!args.city_sizes.empty()) {
     if (args.city_sizes.size() < 2) return fail("--city-sizes: give at least two sizes");
     for (const int b : args.city_sizes)

@@ -205,6 +205,24 @@ Scene make_city(int buildings, CityView view) {
   return s;
 }
 
+Scene with_buildings_merged(const Scene& city) {
+  Scene merged = city;
+  merged.objects.clear();
+  Mesh buildings;
+  for (const SceneObject& o : city.objects) {
+    if (!o.name.starts_with("building")) {
+      merged.objects.push_back(o);
+      continue;
+    }
+    Mesh placed = *o.mesh;
+    for (glm::vec3& p : placed.positions) p = glm::vec3(o.transform * glm::vec4(p, 1.0f));
+    append_mesh(buildings, placed);
+  }
+  merged.objects.push_back(
+      make_object("buildings", std::move(buildings), glm::mat4(1.0f), {0.7f, 0.7f, 0.7f}));
+  return merged;
+}
+
 bool is_city_name(std::string_view name) {
   return name == "city" || name == "city-above" || name.starts_with("city:") ||
          name.starts_with("city-above:");

@@ -34,6 +34,10 @@ Scene make_city(int buildings, CityView view);
 // without N) seen from the street or from above. is_city_name: whether a name has that form
 // (`city:x` does, and city_by_name refuses it saying what N must be).
 bool is_city_name(std::string_view name);
+
+// The city with its buildings merged into one mesh in world space (the other objects as they
+// are): what a user who merges a scene to save draws gives the renderer.
+Scene with_buildings_merged(const Scene& city);
 Expected<Scene> city_by_name(std::string_view name);
 
 }  // namespace shadowvol

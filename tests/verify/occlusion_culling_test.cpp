@@ -11,6 +11,7 @@
 #include "accel/near_plane.h"
 #include "backend/backend.h"
 #include "core/shapes.h"
+#include "scene/city.h"
 #include "scene/scene.h"
 #include "test_meshes.h"
 #include "trace/reference.h"
@@ -187,20 +188,7 @@ TEST_P(OcclusionCulling, TheStreetCullsMostOfTheCityAndMatchesTheReference) {
 // z-pass, exactly.
 TEST_P(OcclusionCulling, OneMeshOfAWholeCityIsNotForcedToZFail) {
   const Scene city = scene_at_frame(*builtin_scene("city:96"), 2);
-  Scene merged = city;
-  merged.objects.clear();
-  Mesh buildings;
-  for (const SceneObject& o : city.objects) {
-    if (!o.name.starts_with("building")) {
-      merged.objects.push_back(o);
-      continue;
-    }
-    Mesh placed = *o.mesh;
-    for (glm::vec3& p : placed.positions) p = glm::vec3(o.transform * glm::vec4(p, 1.0f));
-    append_mesh(buildings, placed);
-  }
-  merged.objects.push_back(
-      make_object("buildings", std::move(buildings), glm::mat4(1.0f), {0.7f, 0.7f, 0.7f}));
+  const Scene merged = with_buildings_merged(city);
   auto renderer = renderer_for(GetParam());
   ASSERT_TRUE(renderer);
   const Frame automatic = renderer->render(merged, options_with(Occlusion::none));
