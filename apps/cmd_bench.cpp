@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -13,12 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_suite.h"
+#include "bench_versus.h"
 #include "cli.h"
 #include "render/frame_json.h"
 #include "render/frame_timing.h"
 #include "scene/city.h"
 #include "scene/stage.h"
-#include "trace/embree_baseline.h"
 
 namespace shadowvol::cli {
 namespace {
@@ -30,7 +31,8 @@ struct BenchArgs {
   std::string json_file, suite, csv, plot;
   std::vector<int> city_sizes;
   std::vector<std::string> stages;  // --stage: timed instead of the scenes
-  std::string versus;               // --versus: embree
+  std::string versus;               // --versus: embree, gl or both
+  bool animate = false;             // --animate: step the scenes' animation frame by frame
   CLI::App* cmd = nullptr;
   CLI::Option* json = nullptr;
   bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
@@ -42,57 +44,18 @@ Scene all_opaque(Scene scene) {
   return scene;
 }
 
-// Embree's frame of the same scene and size (trace/embree_baseline.h), with its BVH built in
-// the frame and kept from frame to frame, and the hybrid's shadow rays alone; the ratios of
-// shadowvol's frame and of its volumes and counts to them.
-struct Versus {
-  nlohmann::json json;
-  std::string text;
-};
-Expected<Versus> versus_embree(const Scene& scene, const RenderOptions& options, int frames,
-                               double frame_ms, double volumes_counts_ms) {
-  auto embree = EmbreeBaseline::create();
-  if (!embree) return embree.error();
-  double build_ms = 0.0, built = 0.0, primary = 0.0, shadow = 0.0;
-  for (int f = 0; f <= frames; ++f) {  // frame 0 warms up
-    double ms = 0.0;
-    if (auto ok = (*embree)->build(scene, ms); !ok) return ok.error();
-    const EmbreeFrame e = (*embree)->trace(scene, options.width, options.height);
-    if (f == 0) continue;
-    built += ms;
-    primary += e.ms_primary;
-    shadow += e.ms_shadow;
-  }
-  build_ms = built / frames, primary /= frames, shadow /= frames;
-  const double kept = primary + shadow, with_build = build_ms + kept;
-  Versus v;
-  v.json = {{"bvh_build_ms", build_ms},
-            {"primary_ms", primary},
-            {"shadow_ms", shadow},
-            {"frame_bvh_built_ms", with_build},
-            {"frame_bvh_kept_ms", kept},
-            {"frame_over_embree_built", frame_ms / with_build},
-            {"frame_over_embree_kept", frame_ms / kept},
-            {"volumes_counts_over_shadow_rays_kept", volumes_counts_ms / shadow},
-            {"volumes_counts_over_shadow_rays_built", volumes_counts_ms / (build_ms + shadow)}};
-  char line[512];
-  std::snprintf(line, sizeof line,
-                "%-16s embree: BVH %.2f + primary %.2f + shadow %.2f ms; frame / embree's: "
-                "%.2fx (BVH built), %.2fx (kept); volumes + counts / shadow rays: %.2fx (kept), "
-                "%.2fx (built)\n",
-                "", build_ms, primary, shadow, frame_ms / with_build, frame_ms / kept,
-                volumes_counts_ms / shadow, volumes_counts_ms / (build_ms + shadow));
-  v.text = line;
-  return v;
-}
-
 // Frame times of scenes on one backend: the mean over `frames` frames after one warm-up frame
 // (which builds volumes and compiles shaders), per stage. A scene with transparent casters is
 // also drawn all opaque, frame for frame in turn, for the ratio of their frame times.
 int bench(const BenchArgs& args) {
   if (args.frames < 1)
     return fail("--frames: " + std::to_string(args.frames) + " is not a positive count");
-  std::unique_ptr<Renderer> renderer, opaque_renderer;
+  Baselines baselines;
+  if (!args.versus.empty()) {
+    auto parsed = parse_baselines(args.versus);
+    if (!parsed) return fail("--versus: " + parsed.error().message);
+    baselines = *parsed;
+  }
   nlohmann::json out = nlohmann::json::array();
   const bool json = args.json->count() > 0;
   StatusLine status;
@@ -109,72 +72,90 @@ int bench(const BenchArgs& args) {
     auto resolved = resolve(frame, std::move(stage));
     if (!resolved) return fail(resolved.error().message);
     const RenderOptions& options = resolved->options;
-    // Each renderer is made once and keeps its volumes and buffers from scene to scene; the
-    // opaque twin has one of its own.
-    for (std::unique_ptr<Renderer>* r : {&renderer, &opaque_renderer}) {
-      if (*r || (r == &opaque_renderer && !has_transparent_casters(resolved->scene))) continue;
-      auto made = make_frame_renderer(*resolved, options);
-      if (!made) return fail(made.error().message);
-      *r = std::move(*made);
-    }
+    // New renderers per scene, so that each scene's first frame is a cold one. The opaque twin
+    // draws the scene with every caster opaque; the classic gl frame is a baseline.
+    auto renderer = make_frame_renderer(*resolved, options);
+    if (!renderer) return fail(renderer.error().message);
     const bool glass = has_transparent_casters(resolved->scene);
     const Scene opaque = all_opaque(resolved->scene);
-    std::vector<TimedRenderer> timed{{*renderer, resolved->scene}};
-    if (glass) timed.push_back({*opaque_renderer, opaque});
+    std::vector<TimedRenderer> timed{{**renderer, resolved->scene, options}};
+    std::unique_ptr<Renderer> opaque_renderer;
+    if (glass) {
+      auto made = make_frame_renderer(*resolved, options);
+      if (!made) return fail(made.error().message);
+      opaque_renderer = std::move(*made);
+      timed.push_back({*opaque_renderer, opaque, options});
+    }
+    std::optional<ClassicGl> classic;
+    if (baselines.gl) {
+      auto made = classic_gl(options);
+      if (!made) return fail("--versus gl: " + made.error().message);
+      classic = std::move(*made);
+      timed.push_back({*classic->renderer, resolved->scene, classic->options});
+    }
     const std::vector<FrameTiming> t =
-        time_frames(timed, options, args.frames, [&](int done, int of) {
+        time_frames(timed, args.frames, args.animate, [&](int done, int of) {
           status.show(resolved->scene.name + ": frame " + std::to_string(done + 1) + " of " +
                       std::to_string(of));
         });
     status.clear();
     const FrameStats& sum = t[0].total;
     const double n = args.frames;
-    const std::string backend(renderer->backend().name());
+    const std::string backend((*renderer)->backend().name());
     nlohmann::json row = to_json(options);
     row.update({{"scene", resolved->scene.name},
                 {"backend", backend},
                 {"volumes", frame.volumes},
                 {"frames", args.frames},
+                {"animated", args.animate},
                 {"frame_ms", t[0].frame_ms},
+                {"first_frame_ms", t[0].first_frame_ms},
                 {"depth_ms", sum.ms_depth / n},
                 {"volumes_ms", sum.ms_volumes / n},
                 {"counts_ms", sum.ms_counts / n},
                 {"shade_ms", sum.ms_shade / n},
                 {"readback_ms", sum.ms_readback / n},
-                {"volume_primitives", sum.volume_primitives / args.frames}});
+                {"volume_primitives", sum.volume_primitives / args.frames},
+                {"volumes_built", double(sum.volumes_built) / n}});
     row.update(cc_json(sum, args.frames, false));  // fill: bench --suite cc
     row.update(nlohmann::json::object({occlusion_json(sum, args.frames)}));
     if (glass) {
       row["all_opaque_frame_ms"] = t[1].frame_ms;
       row["transparent_over_opaque"] = t[0].frame_ms / t[1].frame_ms;
     }
-    if (renderer->backend().counts_work()) {  // the rasterizer's work, per frame
+    if ((*renderer)->backend().counts_work()) {  // the rasterizer's work, per frame
       row["count_pass"] = to_json(sum.counts, args.frames);
       row["split_sampling"] = to_json(sum.split_sampling, args.frames);
     }
-    std::string versus_text;  // printed under the frame's line
-    if (args.versus == "embree") {
-      auto versus = versus_embree(resolved->scene, options, args.frames, t[0].frame_ms,
-                                  (sum.ms_volumes + sum.ms_counts) / n);
-      if (!versus) return fail(versus.error().message);
-      row["versus_embree"] = versus->json;
-      versus_text = versus->text;
+    Versus versus;  // printed under the frame's line
+    if (baselines.any()) {
+      const MeasuredFrame ours = measured(t[0]);
+      versus_cold(ours, versus);
+      if (classic) versus_gl(ours, t.back(), classic->note, versus);
+      if (baselines.embree) {
+        status.show(resolved->scene.name + ": timing the baselines");
+        auto ok = versus_embree(resolved->scene, options, args.frames, args.animate, **renderer,
+                                ours, versus);
+        status.clear();
+        if (!ok) return fail(ok.error().message);
+      }
+      row["versus"] = versus.json;
     }
     if (json) {
       out.push_back(row);
       continue;
     }
     std::printf(
-        "%-16s %s %dx%d: %7.2f ms a frame (depth %.2f, volumes %.2f, counts %.2f, shade %.2f, "
+        "%-16s %s %dx%d%s: %7.2f ms a frame (depth %.2f, volumes %.2f, counts %.2f, shade %.2f, "
         "read-back %.2f)\n",
-        resolved->scene.name.c_str(), backend.c_str(), options.width, options.height, t[0].frame_ms,
-        sum.ms_depth / n, sum.ms_volumes / n, sum.ms_counts / n, sum.ms_shade / n,
-        sum.ms_readback / n);
+        resolved->scene.name.c_str(), backend.c_str(), options.width, options.height,
+        args.animate ? " animated" : "", t[0].frame_ms, sum.ms_depth / n, sum.ms_volumes / n,
+        sum.ms_counts / n, sum.ms_shade / n, sum.ms_readback / n);
     if (glass)
       std::printf("%-16s %s %dx%d: %7.2f ms a frame all opaque: transparency costs %.2fx\n", "",
                   backend.c_str(), options.width, options.height, t[1].frame_ms,
                   t[0].frame_ms / t[1].frame_ms);
-    std::printf("%s", versus_text.c_str());
+    std::printf("%s", versus.text.c_str());
   }
   if (json) std::cout << out.dump(2) << "\n";
   return 0;
@@ -296,8 +277,6 @@ int suite(const BenchArgs& args) {
 }
 
 int run(const BenchArgs& args) {
-  if (!args.versus.empty() && args.versus != "embree")
-    return fail("--versus: unknown baseline '" + args.versus + "': expected embree");
   if (args.given("--city-sizes") && args.suite != "city")
     return fail("--city-sizes needs --suite city");
   if (!args.suite.empty() || !args.csv.empty() || !args.plot.empty()) return suite(args);
@@ -323,9 +302,14 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "sphere:N (a UV sphere of 2 N^2 triangles) or cad (a CAD-like assembly of "
                   "about 150,000 triangles); the stage: docs/performance.md");
   cmd->add_option("--versus", args->versus,
-                  "Also time Embree on the same scene and size: embree (primary and shadow rays "
-                  "in 8-wide packets over every thread, its BVH built in the frame and kept), "
-                  "and print the ratios");
+                  "Also time baselines on the same scene and size, in the same run, and print the "
+                  "ratios against issue 22's goals: embree (ray casting: primary and shadow rays "
+                  "in 8-wide packets over every thread, its BVH built in the frame and kept; and "
+                  "the hybrid: our depth pass, then Embree's shadow rays), gl (the classic frame "
+                  "on the gl backend: CPU volumes, z-fail, stencil), or embree,gl");
+  cmd->add_flag("--animate", args->animate,
+                "Draw the scenes' animation frame by frame (the stage's mesh slides), so that "
+                "volumes and Embree's BVH are rebuilt every frame");
   cmd->add_option("--frames", args->frames, "Frames to time per scene, after one warm-up")
       ->capture_default_str();
   args->json = cmd->add_option("--json", args->json_file,

@@ -100,6 +100,7 @@ Scene stage_scene(std::string name, Mesh mesh) {
   s.name = name;
   s.objects.push_back(
       make_object(std::move(name), std::move(mesh), glm::mat4(1.0f), {0.8f, 0.55f, 0.35f}));
+  s.objects.back().animation.move = glm::vec3(kStageStepPerFrame * r, 0.0f, 0.0f);
   glm::mat4 ground(1.0f);
   ground[3] = glm::vec4(c.x, lo.y - 0.001f * r, c.z, 1.0f);
   s.objects.push_back(make_object("ground", make_ground(4.0f * r), ground, {0.75f, 0.75f, 0.72f}));

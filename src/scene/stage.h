@@ -5,7 +5,9 @@
 // The stage, for a mesh of bounds centre c and half-diagonal r: a ground quad just under the
 // bounds (y = min y - 0.001 r), half-size 4 r, centred under c; one point light at
 // c + r (1.5, 3, 1); the eye at c + r (0, 1.2, 3) looking at c, up +y, vertical field of view
-// 50 degrees, near plane 0.05 r.
+// 50 degrees, near plane 0.05 r. Animated (scene_at_frame, `bench --animate`), the mesh slides
+// along +x by kStageStepPerFrame r a frame over the still ground: its volume, and any ray
+// tracer's acceleration structure, must be rebuilt every frame.
 #pragma once
 
 #include <string>
@@ -16,6 +18,8 @@
 #include "scene/scene.h"
 
 namespace shadowvol {
+
+inline constexpr float kStageStepPerFrame = 0.01f;
 
 // The stage around `mesh` (named `name`). The mesh must have a vertex (asserted).
 Scene stage_scene(std::string name, Mesh mesh);

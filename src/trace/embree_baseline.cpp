@@ -132,13 +132,51 @@ void for_each_tile(int width, int height, PerTile&& per_tile) {
       });
 }
 
+// The direction of the ray through the centre of pixel (px, py), eye-relative, not normalized.
+glm::vec3 pixel_ray(const glm::mat4& inv_view_proj, int px, int py, int width, int height) {
+  const glm::vec4 on_near =
+      inv_view_proj * glm::vec4((float(px) + 0.5f) / float(width) * 2.0f - 1.0f,
+                                1.0f - (float(py) + 0.5f) / float(height) * 2.0f, 1.0f, 1.0f);
+  return glm::vec3(on_near) / on_near.w;
+}
+
+glm::mat4 inverse_view_proj(const Camera& camera, int width, int height) {
+  return glm::inverse(camera.projection(float(width) / float(height)) * camera.view_from_eye());
+}
+
 }  // namespace
+
+void visible_points(const Scene& scene, int width, int height, std::span<const std::int32_t> object,
+                    std::span<const std::uint32_t> face, std::vector<glm::vec4>& points) {
+  const glm::mat4 inv_view_proj = inverse_view_proj(scene.camera, width, height);
+  std::vector<glm::mat4> models;
+  for (const SceneObject& o : scene.objects)
+    models.push_back(eye_relative(o.transform, scene.camera.position));
+  points.resize(static_cast<std::size_t>(width) * height);
+  tbb::parallel_for(0, height, [&](int y) {
+    for (int x = 0; x < width; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * width + x;
+      points[p] = glm::vec4(0.0f);
+      if (object[p] < 0) continue;
+      const auto o = static_cast<std::size_t>(object[p]);
+      const Mesh& mesh = *scene.objects[o].mesh;
+      const std::uint32_t* v = &mesh.indices[3 * std::size_t{face[p]}];
+      const glm::vec3 a(models[o] * glm::vec4(mesh.positions[v[0]], 1.0f));
+      const glm::vec3 b(models[o] * glm::vec4(mesh.positions[v[1]], 1.0f));
+      const glm::vec3 c(models[o] * glm::vec4(mesh.positions[v[2]], 1.0f));
+      const glm::vec3 n = glm::cross(b - a, c - a);
+      const glm::vec3 d = pixel_ray(inv_view_proj, x, y, width, height);
+      const float along = glm::dot(n, d);
+      if (along == 0.0f) continue;  // seen edge-on: no point to aim from
+      points[p] = glm::vec4(d * (glm::dot(n, a) / along), 1.0f);
+    }
+  });
+}
 
 EmbreeFrame EmbreeBaseline::trace(const Scene& scene, int width, int height) {
   const State& s = *state_;
   EmbreeFrame out;
-  const glm::mat4 inv_view_proj = glm::inverse(
-      scene.camera.projection(float(width) / float(height)) * scene.camera.view_from_eye());
+  const glm::mat4 inv_view_proj = inverse_view_proj(scene.camera, width, height);
   const float near = scene.camera.near;
   // Primary rays: each hit's point (w = 1) or none (w = 0), per pixel.
   std::vector<glm::vec4> points(static_cast<std::size_t>(width) * height);
@@ -153,10 +191,7 @@ EmbreeFrame EmbreeBaseline::trace(const Scene& scene, int width, int height) {
         for (int k = 0; k < 8; ++k) {
           const int px = x + k % kPacketW, py = y + k / kPacketW;
           valid[k] = px < x1 && py < y1 ? -1 : 0;
-          const glm::vec4 on_near =
-              inv_view_proj * glm::vec4((px + 0.5f) / width * 2.0f - 1.0f,
-                                        1.0f - (py + 0.5f) / height * 2.0f, 1.0f, 1.0f);
-          const glm::vec3 d = glm::normalize(glm::vec3(on_near) / on_near.w);
+          const glm::vec3 d = glm::normalize(pixel_ray(inv_view_proj, px, py, width, height));
           rh.ray.org_x[k] = rh.ray.org_y[k] = rh.ray.org_z[k] = 0.0f;
           rh.ray.dir_x[k] = d.x, rh.ray.dir_y[k] = d.y, rh.ray.dir_z[k] = d.z;
           rh.ray.tnear[k] = near;

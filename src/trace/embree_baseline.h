@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "core/expected.h"
 #include "scene/scene.h"
@@ -21,6 +22,13 @@ struct EmbreeFrame {
   double ms_build = 0, ms_primary = 0, ms_shadow = 0;
   std::uint64_t hits = 0, shadowed = 0;  // pixels that see a surface; (pixel, light) in shadow
 };
+
+// The hybrid's input from a depth pass: per pixel of a width x height frame of `scene`, given the
+// object (-1 for none) and face it shows, the eye-relative point the pixel centre's ray meets the
+// face's plane at (w = 1), or w = 0 where no surface is, as a deferred renderer rebuilds
+// positions from its depth buffer. Rows in parallel.
+void visible_points(const Scene& scene, int width, int height, std::span<const std::int32_t> object,
+                    std::span<const std::uint32_t> face, std::vector<glm::vec4>& points);
 
 class EmbreeBaseline {
  public:

@@ -36,6 +36,19 @@ TEST(Stage, IsLaidOutFromTheMeshBounds) {
   EXPECT_NEAR(s.camera.near, 0.05f * r, 1e-6f);
 }
 
+TEST(Stage, AnimatedTheMeshSlidesOverTheStillGround) {
+  const Scene s = stage_scene("sphere", stage_sphere(8));
+  const float r = 0.5f * glm::length(glm::vec3(2.0f));  // the unit sphere's bounds
+  const Scene later = scene_at_frame(s, 3);
+  const glm::vec3 moved(later.objects[0].transform[3]);
+  EXPECT_NEAR(moved.x, 3.0f * kStageStepPerFrame * r, 1e-3f * r);
+  EXPECT_EQ(moved.y, 0.0f);
+  EXPECT_EQ(moved.z, 0.0f);
+  EXPECT_EQ(later.objects[1].transform, s.objects[1].transform);
+  EXPECT_EQ(later.lights[0].position, s.lights[0].position);
+  EXPECT_EQ(later.camera.position, s.camera.position);
+}
+
 TEST(Stage, SpheresHaveTwoNSquaredTriangles) {
   for (const int n : {3, 128, 512}) {
     const Mesh m = stage_sphere(n);
