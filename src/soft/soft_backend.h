@@ -20,6 +20,8 @@
 #include <string_view>
 #include <vector>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -114,6 +116,27 @@ class SoftBackend final : public FrameBackend {
   // Per object the frame shows: its faces' unit normals, eye-relative (shade).
   std::vector<std::uint8_t> seen_;
   std::vector<std::vector<glm::vec3>> normals_;
+  // One row of pixels being shaded, an array per component (shade_row).
+  struct ShadeRow {
+    std::vector<float> nx, ny, nz, ar, ag, ab, z, r, g, b;
+    void resize(std::size_t n) {
+      for (std::vector<float>* v : {&nx, &ny, &nz, &ar, &ag, &ab, &z, &r, &g, &b}) v->resize(n);
+    }
+    glm::vec3 color(int x) const {
+      const auto i = static_cast<std::size_t>(x);
+      return {r[i], g[i], b[i]};
+    }
+  };
+  // Lights row y of `layer` (its depths `depth`) into out's r, g, b; `lights_at` eye-relative.
+  void shade_row(const Scene& scene, const glm::mat4& inv_vp, std::span<const glm::vec4> lights_at,
+                 const SurfaceLayer& layer, std::span<const float> depth, int y,
+                 ShadeRow& out) const;
+  // Per thread, kept between frames: the rows of the opaque and the glass layer being shaded.
+  struct ShadeRows {
+    ShadeRow surface, through;
+  };
+  tbb::enumerable_thread_specific<ShadeRows> shade_rows_;
+  std::vector<glm::vec4> lights_at_;  // eye-relative light positions (w = 1) or directions (0)
 };
 
 // A Renderer (the frame pipeline) on this backend.
