@@ -74,10 +74,12 @@ void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_
   std::printf("\n");
   if (counts_work)
     std::printf(
-        "  count pass: %llu triangles in, %llu clipped, %llu tiles touched, %llu skipped by hi-z "
-        "or depth bounds, %llu pixels processed, %llu count updates\n",
-        ull(s.counts.triangles_in), ull(s.counts.triangles_clipped), ull(s.counts.tiles_touched),
-        ull(s.counts.tiles_skipped), ull(s.counts.pixels_processed), ull(s.counts.count_updates));
+        "  count pass: %llu triangles in, %llu clipped, %llu left out of a block row by hi-z, "
+        "%llu tiles touched, %llu skipped by hi-z or depth bounds, %llu pixels processed, %llu "
+        "count updates\n",
+        ull(s.counts.triangles_in), ull(s.counts.triangles_clipped),
+        ull(s.counts.block_rows_skipped), ull(s.counts.tiles_touched), ull(s.counts.tiles_skipped),
+        ull(s.counts.pixels_processed), ull(s.counts.count_updates));
   if (s.split_sampling.triangles_in > 0)
     std::printf(
         "  split-plane sampling: %llu triangles in, %llu tiles touched, %llu skipped, %llu "

@@ -28,6 +28,7 @@ Counters& Counters::operator+=(const Counters& other) {
   triangles_in += other.triangles_in;
   triangles_clipped += other.triangles_clipped;
   triangles_culled += other.triangles_culled;
+  block_rows_skipped += other.block_rows_skipped;
   tiles_touched += other.tiles_touched;
   tiles_skipped += other.tiles_skipped;
   pixels_processed += other.pixels_processed;
@@ -159,10 +160,28 @@ inline std::int64_t edge_at(const Setup& s, int i, int px, int py) {
 // The pixel columns [px0, px1] that a triangle can cover in the rows [y0, y1]: the x extent of
 // its intersection with the slab of those rows' pixel centres, widened by a pixel for rounding.
 // A thin triangle that crosses the screen touches few tiles of each band, not its bounding box.
-bool columns_in_rows(const Setup& s, int y0, int y1, int width, int& px0, int& px1) {
+// With kDepths, also the range [zlo, zhi] of its plane's depth over that intersection (a convex
+// polygon: its corners are where the edges enter and leave the slab), unclamped.
+struct SlabExtent {
+  int px0 = 0, px1 = 0;
+  double zlo = HUGE_VAL, zhi = -HUGE_VAL;
+};
+template <bool kDepths>
+bool slab_extent(const Setup& s, int y0, int y1, int width, SlabExtent& out) {
   const double top = double(y0) * kSubpixels + kSubpixels / 2;
   const double bottom = double(y1) * kSubpixels + kSubpixels / 2;
   double lo = HUGE_VAL, hi = -HUGE_VAL;
+  const auto corner = [&](double x, double y) {
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+    if constexpr (kDepths) {
+      const double z =
+          s.v[0].z +
+          (s.dzdx * (x - double(s.v[0].x)) + s.dzdy * (y - double(s.v[0].y))) / kSubpixels;
+      out.zlo = std::min(out.zlo, z);
+      out.zhi = std::max(out.zhi, z);
+    }
+  };
   for (int i = 0; i < 3; ++i) {
     const ScreenVertex& p = s.v[i];
     const ScreenVertex& q = s.v[(i + 1) % 3];
@@ -170,21 +189,17 @@ bool columns_in_rows(const Setup& s, int y0, int y1, int width, int& px0, int& p
     const double b = std::min<double>(std::max(p.y, q.y), bottom);
     if (a > b) continue;  // the edge misses the slab
     if (p.y == q.y) {
-      lo = std::min({lo, double(p.x), double(q.x)});
-      hi = std::max({hi, double(p.x), double(q.x)});
+      corner(double(p.x), double(p.y));
+      corner(double(q.x), double(q.y));
       continue;
     }
-    for (const double y : {a, b}) {
-      const double x = double(p.x) + (y - double(p.y)) * s.x_per_y[i];
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
-    }
+    for (const double y : {a, b}) corner(double(p.x) + (y - double(p.y)) * s.x_per_y[i], y);
   }
   if (lo > hi) return false;
   const auto pixel_of = [](double sub) { return (sub - kSubpixels / 2) / kSubpixels; };
-  px0 = static_cast<int>(std::max(0.0, std::floor(pixel_of(lo)) - 1.0));
-  px1 = static_cast<int>(std::min(double(width - 1), std::ceil(pixel_of(hi)) + 1.0));
-  return px0 <= px1;
+  out.px0 = static_cast<int>(std::max(0.0, std::floor(pixel_of(lo)) - 1.0));
+  out.px1 = static_cast<int>(std::min(double(width - 1), std::ceil(pixel_of(hi)) + 1.0));
+  return out.px0 <= out.px1;
 }
 
 // Per-pixel depths are float, from the tile's first pixel: z = (z_tile + dz/dy j) + dz/dx i,
@@ -297,8 +312,9 @@ template <class TileTest, class Row>
 void raster(const Target& target, const Setup& s, int band, Counters& counters, TileWork* work,
             const StripInPixels& strip, TileTest&& tile_test, Row&& row) {
   const int y0 = band * kTileSize, y1 = std::min(target.height, y0 + kTileSize) - 1;
-  int px0 = 0, px1 = 0;
-  if (!columns_in_rows(s, y0, y1, target.width, px0, px1)) return;
+  SlabExtent extent;
+  if (!slab_extent<false>(s, y0, y1, target.width, extent)) return;
+  const int px0 = extent.px0, px1 = extent.px1;
   const Floats ds_lane = static_cast<float>(strip.ds_dx) * kLaneOffset;
   const float zlo_triangle = std::min({s.v[0].z, s.v[1].z, s.v[2].z}) - kDepthSlack;
   const float zhi_triangle = std::max({s.v[0].z, s.v[1].z, s.v[2].z}) + kDepthSlack;
@@ -449,6 +465,9 @@ Target::Target(int w, int h)
       count(static_cast<std::size_t>(w) * h, 0),
       id(static_cast<std::size_t>(w) * h, kNoId),
       tile_depth(static_cast<std::size_t>(tiles_x) * tiles_y) {
+  blocks_x = (tiles_x + kBlockTiles - 1) / kBlockTiles;
+  blocks_y = (tiles_y + kBlockTiles - 1) / kBlockTiles;
+  block_depth.resize(static_cast<std::size_t>(blocks_x) * blocks_y);
   assert(w > 0 && h > 0 && w <= kMaxViewport && h <= kMaxViewport);
 }
 
@@ -456,6 +475,7 @@ void Target::clear_depth(float z) {
   std::fill(depth.begin(), depth.end(), z);
   std::fill(id.begin(), id.end(), kNoId);
   std::fill(tile_depth.begin(), tile_depth.end(), TileDepth{z, z});
+  std::fill(block_depth.begin(), block_depth.end(), TileDepth{z, z});
 }
 
 // Sweeps the buffer band by band, in parallel, as the draws use it.
@@ -494,6 +514,14 @@ void Target::update_tile_depth() {
           bounds.zmax = std::max(bounds.zmax, z);
         }
       tile_depth[static_cast<std::size_t>(ty) * tiles_x + tx] = bounds;
+    }
+  std::fill(block_depth.begin(), block_depth.end(), TileDepth{1.0f, 0.0f});
+  for (int ty = 0; ty < tiles_y; ++ty)
+    for (int tx = 0; tx < tiles_x; ++tx) {
+      const TileDepth& tile = tile_depth[static_cast<std::size_t>(ty) * tiles_x + tx];
+      TileDepth& block =
+          block_depth[static_cast<std::size_t>(ty / kBlockTiles) * blocks_x + tx / kBlockTiles];
+      block = {std::min(block.zmin, tile.zmin), std::max(block.zmax, tile.zmax)};
     }
 }
 
@@ -552,16 +580,19 @@ void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& cou
   for (std::size_t c = 0; c < scratch.chunks; ++c) counters += scratch.setup[c].counters;
 }
 
-// Bands per task of for_each_band: the triangles' band ranges are scanned once per task, not once
-// per band, and a frame of 1080 rows still splits into 17 tasks for the cores to share.
-inline constexpr int kBandsPerTask = 8;
+// Bands per task of for_each_band: one row of blocks. The triangles' band ranges are scanned
+// once per task, not once per band, and a frame of 1080 rows still splits into 17 tasks for the
+// cores to share.
+inline constexpr int kBandsPerTask = kBlockTiles;
 
-// Rasterizes the triangles prepare() set up, band by band (a band is a row of tiles), groups of
-// kBandsPerTask bands in parallel: each band sees every triangle in order, so a pixel's result
-// does not depend on the threads. Each group scans the compact lists of the triangles' band
-// ranges, not their setups, and takes each triangle over its bands in the group, in turn.
-template <class PerTriangle>
-void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangle) {
+// Rasterizes the triangles prepare() set up, band by band (a band is a row of tiles), a row of
+// blocks' bands per task, tasks in parallel: each band sees every triangle in order, so a
+// pixel's result does not depend on the threads. Each task scans the compact lists of the
+// triangles' band ranges, not their setups, and takes each triangle over its bands in the task,
+// in turn, where in_block_row(triangle, block row, first band, last band) says it may draw there.
+template <class PerTriangle, class InBlockRow>
+void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangle,
+                   InBlockRow&& in_block_row) {
   Target::Scratch& scratch = scratch_of(target);
   scratch.band_counters.assign(static_cast<std::size_t>(target.tiles_y), Counters{});
   const int tasks = (target.tiles_y + kBandsPerTask - 1) / kBandsPerTask;
@@ -572,13 +603,52 @@ void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangl
       const SetupChunk& chunk = scratch.setup[c];
       for (std::size_t t = 0; t < chunk.prepared.size(); ++t) {
         const BandRange& range = chunk.ranges[t];
-        for (int band = std::max(first, range.first); band <= std::min(last, range.last); ++band)
+        const int from = std::max(first, range.first), to = std::min(last, range.last);
+        if (from > to) continue;
+        if (!in_block_row(chunk.prepared[t], task, from, to)) {
+          ++scratch.band_counters[static_cast<std::size_t>(from)].block_rows_skipped;
+          continue;
+        }
+        for (int band = from; band <= to; ++band)
           per_triangle(chunk.prepared[t], band,
                        scratch.band_counters[static_cast<std::size_t>(band)]);
       }
     }
   });
   for (const Counters& c : scratch.band_counters) counters += c;
+}
+template <class PerTriangle>
+void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangle) {
+  for_each_band(target, counters, per_triangle,
+                [](const Prepared&, int, int, int) { return true; });
+}
+
+// The coarser hi-z (kBlockTiles): whether a fragment of the triangle in bands [first, last] of
+// block row `row` may pass a depth test against some block it crosses there, within `bounds`:
+// z-pass's (nearer than the stored depth) or z-fail's (at or behind it). Its depth range over its
+// part of those rows, within its vertices' depths as a tile test takes it, is widened by what the
+// float steps to a pixel's depth may add: four roundings, each below 2^-24 of the plane's size
+// within a tile of that part, a millionth of it in all.
+bool may_pass_in_blocks(const Target& target, const Setup& s, int row, int first, int last,
+                        const DepthBounds& bounds, bool zpass) {
+  const int y0 = first * kTileSize, y1 = std::min(target.height, (last + 1) * kTileSize) - 1;
+  SlabExtent e;
+  if (!slab_extent<true>(s, y0, y1, target.width, e)) return false;
+  const double size = std::max(std::abs(e.zlo), std::abs(e.zhi)) +
+                      2.0 * kTileSize * (std::abs(s.dzdx) + std::abs(s.dzdy));
+  const double slack = kDepthSlack + 1e-6 * size;
+  const float zlo = static_cast<float>(
+      std::max<double>(std::min({s.v[0].z, s.v[1].z, s.v[2].z}) - kDepthSlack, e.zlo - slack));
+  const float zhi = static_cast<float>(
+      std::min<double>(std::max({s.v[0].z, s.v[1].z, s.v[2].z}) + kDepthSlack, e.zhi + slack));
+  constexpr int kBlockPixels = kTileSize * kBlockTiles;
+  for (int bx = e.px0 / kBlockPixels; bx <= e.px1 / kBlockPixels; ++bx) {
+    const TileDepth& block =
+        target.block_depth[static_cast<std::size_t>(row) * target.blocks_x + bx];
+    if (block.zmax < bounds.zmin || block.zmin > bounds.zmax) continue;
+    if (zpass ? zhi > block.zmin : zlo <= block.zmax) return true;
+  }
+  return false;
 }
 
 // The depth pass, triangle t with the id id_of(t).
@@ -722,45 +792,59 @@ void count_pass(Target& target, std::span<const glm::vec4> triangles,
   };
   const std::uint64_t passed_before = counters.pixels_passed;
   const StripInPixels strip_in_pixels(strip, target.width, target.height);
-  for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
-    // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
-    // it subtract; cover and behind: every face in front of it, or behind it, adds.
-    const bool unsigned_faces = rule == CountRule::cover || rule == CountRule::behind;
-    const std::int32_t front_delta =
-        (p.setup.front || unsigned_faces ? 1 : -1) * weights[p.triangle];
-    if (front_delta == 0) return;
-    const float* depth = target.depth.data();
-    std::int32_t* count = target.count.data();
-    const DepthBounds bounds = bounds_of(p.triangle);
-    TileWork* work = target.tile_work.empty()
-                         ? nullptr
-                         : &target.tile_work[static_cast<std::size_t>(band) * target.tiles_x];
-    raster(
-        target, p.setup, band, c, work, strip_in_pixels,
-        [&tile_test, &bounds](int tx, int band, float zlo, float zhi) {
-          return tile_test(bounds, tx, band, zlo, zhi);
-        },
-        // By value: the stores into count may alias anything an int32 reference names.
-        [depth, count, bounds, front_delta](std::size_t first, const Mask& covered, const Floats& z,
-                                            auto lanes, auto checks, CountRule tile_rule) {
-          // Depth as z-pass tests it: prefill and cover too; behind tests as z-fail does.
-          const bool zpass = tile_rule != CountRule::zfail && tile_rule != CountRule::behind;
-          const std::int32_t delta = tile_rule == CountRule::zfail ? -front_delta : front_delta;
-          if (tile_rule == CountRule::fill) return covered;  // touched, nothing written
-          if constexpr (checks == TileVerdict::accept) {
-            store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
-                      lanes);
-            return covered;
-          }
-          const Floats stored = load_row<Floats>(depth + first, lanes);
-          const Mask in_front = z > stored;
-          Mask pass = covered & (zpass ? in_front : ~in_front);
-          if constexpr (checks == TileVerdict::test)
-            pass &= (stored >= bounds.zmin) & (stored <= bounds.zmax);
-          store_row(count + first, load_row<Mask>(count + first, lanes) + (pass & delta), lanes);
-          return pass;
-        });
-  });
+  // Rules that test depth alike on every tile may leave a triangle out of a block row at once.
+  const bool blockwise =
+      split.tiles == SplitTiles::all && (rule == CountRule::zpass || rule == CountRule::zfail ||
+                                         rule == CountRule::cover || rule == CountRule::behind);
+  const bool zpass_test = rule == CountRule::zpass || rule == CountRule::cover;
+  const auto in_block_row = [&](const Prepared& p, int row, int first, int last) {
+    return !blockwise ||
+           may_pass_in_blocks(target, p.setup, row, first, last, bounds_of(p.triangle), zpass_test);
+  };
+  for_each_band(
+      target, counters,
+      [&](const Prepared& p, int band, Counters& c) {
+        // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
+        // it subtract; cover and behind: every face in front of it, or behind it, adds.
+        const bool unsigned_faces = rule == CountRule::cover || rule == CountRule::behind;
+        const std::int32_t front_delta =
+            (p.setup.front || unsigned_faces ? 1 : -1) * weights[p.triangle];
+        if (front_delta == 0) return;
+        const float* depth = target.depth.data();
+        std::int32_t* count = target.count.data();
+        const DepthBounds bounds = bounds_of(p.triangle);
+        TileWork* work = target.tile_work.empty()
+                             ? nullptr
+                             : &target.tile_work[static_cast<std::size_t>(band) * target.tiles_x];
+        raster(
+            target, p.setup, band, c, work, strip_in_pixels,
+            [&tile_test, &bounds](int tx, int band, float zlo, float zhi) {
+              return tile_test(bounds, tx, band, zlo, zhi);
+            },
+            // By value: the stores into count may alias anything an int32 reference names.
+            [depth, count, bounds, front_delta](std::size_t first, const Mask& covered,
+                                                const Floats& z, auto lanes, auto checks,
+                                                CountRule tile_rule) {
+              // Depth as z-pass tests it: prefill and cover too; behind tests as z-fail does.
+              const bool zpass = tile_rule != CountRule::zfail && tile_rule != CountRule::behind;
+              const std::int32_t delta = tile_rule == CountRule::zfail ? -front_delta : front_delta;
+              if (tile_rule == CountRule::fill) return covered;  // touched, nothing written
+              if constexpr (checks == TileVerdict::accept) {
+                store_row(count + first, load_row<Mask>(count + first, lanes) + (covered & delta),
+                          lanes);
+                return covered;
+              }
+              const Floats stored = load_row<Floats>(depth + first, lanes);
+              const Mask in_front = z > stored;
+              Mask pass = covered & (zpass ? in_front : ~in_front);
+              if constexpr (checks == TileVerdict::test)
+                pass &= (stored >= bounds.zmin) & (stored <= bounds.zmax);
+              store_row(count + first, load_row<Mask>(count + first, lanes) + (pass & delta),
+                        lanes);
+              return pass;
+            });
+      },
+      in_block_row);
   if (rule != CountRule::fill)
     counters.count_updates += counters.pixels_passed - passed_before;  // every pass writes
 }

@@ -48,6 +48,12 @@ inline constexpr int kMaxViewport = 4096;
 // Tiles of 8 x 8 pixels, as in Laine 2005 §7 (per-tile culling, per-tile depth bounds).
 inline constexpr int kTileSize = 8;
 
+// Blocks of 8 x 8 tiles (64 x 64 pixels), the hi-z's coarser level: a count pass leaves a
+// triangle out of a block row's eight tile rows at once where no block it crosses can hold a
+// fragment that passes (a volume's long slivers cross hundreds of tiles that the finer level
+// would each reject).
+inline constexpr int kBlockTiles = 8;
+
 // Depth bounds of the pixels of one tile, the hi-z. Two floats, 8 bytes: one cache line holds
 // the bounds of eight tiles, a row of 64 pixels.
 struct TileDepth {
@@ -67,10 +73,12 @@ struct Target {
   static constexpr std::uint32_t kNoId = 0xffffffffu;
   int width = 0, height = 0;
   int tiles_x = 0, tiles_y = 0;
-  std::vector<float> depth;           // window depth, 0 = far (infinity)
-  std::vector<std::int32_t> count;    // signed shadow-volume count
-  std::vector<std::uint32_t> id;      // what the depth pass left visible: kNoId or an id
-  std::vector<TileDepth> tile_depth;  // hi-z, valid after update_tile_depth()
+  int blocks_x = 0, blocks_y = 0;
+  std::vector<float> depth;            // window depth, 0 = far (infinity)
+  std::vector<std::int32_t> count;     // signed shadow-volume count
+  std::vector<std::uint32_t> id;       // what the depth pass left visible: kNoId or an id
+  std::vector<TileDepth> tile_depth;   // hi-z, valid after update_tile_depth()
+  std::vector<TileDepth> block_depth;  // its coarser level (kBlockTiles), valid with it
   // Per tile, row-major: what draw_counts did there, added up while the vector holds one entry
   // per tile (the caller sizes and clears it); empty, nothing is recorded.
   std::vector<TileWork> tile_work;
@@ -88,7 +96,8 @@ struct Target {
   // Adds count * per_count per pixel into `sum` (width * height entries) and leaves every count
   // zero: how a group of transparent casters' surface counts enter a light intensity map.
   void take_counts_into(std::span<glm::vec3> sum, const glm::vec3& per_count);
-  // Recomputes every tile's depth bounds from the depth buffer (after the depth pass).
+  // Recomputes every tile's and block's depth bounds from the depth buffer (after the depth
+  // pass).
   void update_tile_depth();
 
   // What the draws set up, kept between them: on a warm target a draw allocates nothing, and
@@ -104,11 +113,14 @@ struct Counters {
   std::uint64_t triangles_in = 0;
   std::uint64_t triangles_clipped = 0;  // needed clipping (near plane or guard band)
   std::uint64_t triangles_culled = 0;   // nothing left after clipping, or zero area
-  std::uint64_t tiles_touched = 0;      // tiles a triangle may cover (edge test at the corners)
-  std::uint64_t tiles_skipped = 0;      // of those, rejected whole by hi-z or depth bounds
-  std::uint64_t pixels_processed = 0;   // covered pixels that reached the depth test
-  std::uint64_t pixels_passed = 0;      // of those, passed it (an occlusion query's answer)
-  std::uint64_t count_updates = 0;      // count buffer writes
+  // Triangles left out of a block row's tile rows at once by the hi-z's coarser level (count
+  // passes of one rule for every tile); their tiles are not touched.
+  std::uint64_t block_rows_skipped = 0;
+  std::uint64_t tiles_touched = 0;     // tiles a triangle may cover (edge test at the corners)
+  std::uint64_t tiles_skipped = 0;     // of those, rejected whole by hi-z or depth bounds
+  std::uint64_t pixels_processed = 0;  // covered pixels that reached the depth test
+  std::uint64_t pixels_passed = 0;     // of those, passed it (an occlusion query's answer)
+  std::uint64_t count_updates = 0;     // count buffer writes
 
   Counters& operator+=(const Counters& other);
 };

@@ -63,6 +63,7 @@ nlohmann::json occlusion_json(const FrameStats& s, int per) {
 
 nlohmann::json to_json(const raster::Counters& c, std::uint64_t per) {
   return {{"triangles", c.triangles_in / per},
+          {"block_rows_skipped", c.block_rows_skipped / per},
           {"tiles_touched", c.tiles_touched / per},
           {"tiles_skipped", c.tiles_skipped / per},
           {"pixels_processed", c.pixels_processed / per},

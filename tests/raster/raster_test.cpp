@@ -275,17 +275,20 @@ TEST(Raster, DepthOfAPointAtInfinityIsZeroAndTheHiZSkipsOnlyIdleTiles) {
   EXPECT_EQ(target.id[32 * w + 32], 7u);
   target.update_tile_depth();
   EXPECT_FLOAT_EQ(target.depth[32 * w + 32], 0.1f / 5.0f);
-  // A triangle far behind the wall: z-pass cannot change any pixel, so every tile is skipped.
+  // A triangle far behind the wall: z-pass cannot change any pixel, so the hi-z's coarser level
+  // leaves it out of its block row before any tile.
   std::vector<glm::vec4> behind = {proj * glm::vec4(-1, -1, -50, 1),
                                    proj * glm::vec4(1, -1, -50, 1), proj * glm::vec4(0, 1, -50, 1)};
   Counters zpass;
   draw_counts(target, behind, std::vector<std::int32_t>{1}, CountRule::zpass, zpass);
-  EXPECT_GT(zpass.tiles_touched, 0u);
-  EXPECT_EQ(zpass.tiles_skipped, zpass.tiles_touched);
+  EXPECT_EQ(zpass.block_rows_skipped, 1u);
+  EXPECT_EQ(zpass.tiles_touched, 0u);
+  EXPECT_EQ(zpass.pixels_processed, 0u);
   EXPECT_EQ(zpass.count_updates, 0u);
   // The same triangle under z-fail counts in every pixel it covers (it is behind the wall).
   Counters zfail;
   draw_counts(target, behind, std::vector<std::int32_t>{1}, CountRule::zfail, zfail);
+  EXPECT_EQ(zfail.block_rows_skipped, 0u);
   EXPECT_EQ(zfail.tiles_skipped, 0u);
   EXPECT_EQ(zfail.count_updates, zfail.pixels_processed);
   EXPECT_GT(zfail.count_updates, 0u);
@@ -295,6 +298,7 @@ TEST(Raster, DepthOfAPointAtInfinityIsZeroAndTheHiZSkipsOnlyIdleTiles) {
   draw_counts(target, behind, std::vector<std::int32_t>{1}, CountRule::zfail, bounded,
               DepthBounds{0.5f, 1.0f});
   EXPECT_EQ(bounded.count_updates, 0u);
+  EXPECT_EQ(bounded.block_rows_skipped, 1u);
   EXPECT_EQ(bounded.tiles_skipped, bounded.tiles_touched);
   EXPECT_EQ(target.count, before);
   // A triangle at infinity (all w = 0) lies at depth 0, the cleared depth: never nearer.
@@ -307,6 +311,64 @@ TEST(Raster, DepthOfAPointAtInfinityIsZeroAndTheHiZSkipsOnlyIdleTiles) {
   EXPECT_EQ(empty.id[32 * w + 32], Target::kNoId);
   EXPECT_EQ(inf.pixels_passed, 0u);  // depth 0 is not greater than the cleared 0
   EXPECT_GT(inf.pixels_processed, 0u);
+}
+
+// The hi-z's coarser level leaves out only what the tiles would have rejected: long slivers to
+// infinity (shadow-volume sides) over a receding ground and boxes on it count exactly as they do
+// where every tile is tested (a split plane that picks the same rule for every tile: no block
+// level), and most of their block rows are left out.
+TEST(Raster, BlocksLeaveOutOnlyWhatTheTilesWouldReject) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  const int w = 301, h = 197;  // blocks and tiles cut at the edges
+  const glm::mat4 proj = infinite_reversed_perspective(glm::radians(60.0f), float(w) / h, 0.1f);
+  Target target(w, h);
+  Counters ignored;
+  std::vector<glm::vec4> surface = {proj * glm::vec4(-400, -2, 0, 1),
+                                    proj * glm::vec4(400, -2, 0, 1),
+                                    proj * glm::vec4(0, -2, -800, 1)};
+  for (int i = 0; i < 30; ++i) {
+    const glm::vec3 c(6.0f * unit(rng), -1.5f + unit(rng), -12.0f + 6.0f * unit(rng));
+    for (int k = 0; k < 3; ++k)
+      surface.push_back(proj * glm::vec4(c + 0.8f * glm::vec3(unit(rng), unit(rng), unit(rng)), 1));
+  }
+  draw_depth(target, surface, 0, ignored);
+  target.update_tile_depth();
+  // Quads from an edge of a caster above the ground to infinity away from a light above it.
+  const glm::vec3 light(2.0f, 12.0f, -6.0f);
+  std::vector<glm::vec4> slivers;
+  for (int i = 0; i < 200; ++i) {
+    const glm::vec3 a(4.0f * unit(rng), 1.0f + unit(rng), -10.0f + 4.0f * unit(rng));
+    const glm::vec3 b = a + 0.3f * glm::vec3(unit(rng), unit(rng), unit(rng));
+    const glm::vec4 a_far(a - light, 0.0f), b_far(b - light, 0.0f);
+    for (const glm::vec4& p :
+         {glm::vec4(a, 1), glm::vec4(b, 1), b_far, glm::vec4(a, 1), b_far, a_far})
+      slivers.push_back(proj * p);
+  }
+  const std::vector<std::int32_t> weights(slivers.size() / 3, 1);
+  for (const bool zfail : {false, true}) {
+    const auto counts = [&](CountRule rule, const SplitPlane& split, Counters& counters) {
+      draw_counts(target, slivers, weights, rule, counters, {0.0f, 1.0f}, split);
+      std::vector<std::int32_t> out = target.count;
+      std::fill(target.count.begin(), target.count.end(), 0);
+      return out;
+    };
+    Counters blocks, tiles;
+    const std::vector<std::int32_t> by_blocks =
+        counts(zfail ? CountRule::zfail : CountRule::zpass, {}, blocks);
+    // Every stored depth (0 where no surface is, up to 1) lies on the camera's side of the
+    // plane z = -1 (z-pass) and away from it behind z = 5 (z-fail).
+    const SplitPlane every_tile_alike{zfail ? glm::vec4(0.0f, 0.0f, 1.0f, -5.0f)
+                                            : glm::vec4(0.0f, 0.0f, 1.0f, 1.0f)};
+    EXPECT_EQ(by_blocks, counts(CountRule::split, every_tile_alike, tiles)) << zfail;
+    EXPECT_EQ(blocks.count_updates, tiles.count_updates);
+    EXPECT_GT(blocks.count_updates, 1000u);
+    EXPECT_EQ(tiles.block_rows_skipped, 0u);
+    if (!zfail) {
+      EXPECT_GT(blocks.block_rows_skipped, 100u);
+      EXPECT_LT(blocks.tiles_touched, tiles.tiles_touched);
+    }
+  }
 }
 
 // Reversed depth keeps float's relative precision far away: two walls 1000 and 1000.01 units
