@@ -216,6 +216,16 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
     if (part == Topology::kNoPart) part = static_cast<std::uint32_t>(r.components++);
     topo.vertex_part[v] = part;
   }
+  if (r.closed_manifold) {  // six times each part's signed volume, in double
+    std::vector<double> volume(r.components, 0.0);
+    for (std::size_t f = 0; f < topo.face_count(); ++f) {
+      const glm::dvec3 a(topo.positions[topo.face_vertices[3 * f]]);
+      const glm::dvec3 b(topo.positions[topo.face_vertices[3 * f + 1]]);
+      const glm::dvec3 c(topo.positions[topo.face_vertices[3 * f + 2]]);
+      volume[topo.vertex_part[topo.face_vertices[3 * f]]] += glm::dot(a, glm::cross(b, c));
+    }
+    r.wound_outwards = std::all_of(volume.begin(), volume.end(), [](double v) { return v > 0; });
+  }
   return topo;
 }
 

@@ -42,6 +42,10 @@ struct TopologyReport {
   // solid and the standard (silhouette) generator is exact on it. Vertex-non-manifold meshes
   // (two solids touching at a vertex) still qualify: the silhouette method only needs edges.
   bool closed_manifold = false;
+  // Closed manifold, and each part encloses a positive volume: wound outwards. Seen from outside
+  // its bounds, every ray enters the solid through a front (counter-clockwise) face first, so
+  // back faces are never the nearest surface.
+  bool wound_outwards = false;
 };
 
 // Face reference of an irregular edge: face index in the upper bits, and in bit 0 whether the

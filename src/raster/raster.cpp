@@ -534,7 +534,8 @@ Target::Scratch& scratch_of(Target& target) {
 
 // Clips, projects and sets up every triangle of a draw, chunks of kSetupChunk in parallel, into
 // the scratch's chunks, in order, with the tile rows each set-up triangle overlaps.
-void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters) {
+void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+             std::span<const FaceCull> cull = {}) {
   assert(triangles.size() % 3 == 0);
   Target::Scratch& scratch = scratch_of(target);
   const std::size_t n = triangles.size() / 3;
@@ -566,6 +567,8 @@ void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& cou
       for (int i = 1; i + 1 < poly.n; ++i) {  // a fan: the clipped polygon is convex
         Prepared p{t, {}};
         if (!setup(screen[0], screen[i], screen[i + 1], p.setup)) continue;
+        if (!cull.empty() && cull[t] == (p.setup.front ? FaceCull::front : FaceCull::back))
+          continue;
         drawn = true;
         const std::int64_t first =
             std::clamp<std::int64_t>(band_of(p.setup.min_y), 0, target.tiles_y);
@@ -654,8 +657,8 @@ bool may_pass_in_blocks(const Target& target, const Setup& s, int row, int first
 // The depth pass, triangle t with the id id_of(t).
 template <class IdOf>
 void depth_pass(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
-                IdOf id_of) {
-  prepare(target, triangles, counters);
+                IdOf id_of, std::span<const FaceCull> cull = {}) {
+  prepare(target, triangles, counters, cull);
   for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
     const std::uint32_t id = id_of(p.triangle);
     float* depth = target.depth.data();
@@ -686,9 +689,12 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
 }
 
 void draw_depth(Target& target, std::span<const glm::vec4> triangles,
-                std::span<const std::uint32_t> ids, Counters& counters) {
+                std::span<const std::uint32_t> ids, Counters& counters,
+                std::span<const FaceCull> cull) {
   assert(ids.size() * 3 == triangles.size());
-  depth_pass(target, triangles, counters, [ids](std::size_t t) { return ids[t]; });
+  assert(cull.empty() || cull.size() == ids.size());
+  depth_pass(
+      target, triangles, counters, [ids](std::size_t t) { return ids[t]; }, cull);
 }
 
 std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthBounds bounds,

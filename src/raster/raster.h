@@ -112,7 +112,7 @@ struct Target {
 struct Counters {
   std::uint64_t triangles_in = 0;
   std::uint64_t triangles_clipped = 0;  // needed clipping (near plane or guard band)
-  std::uint64_t triangles_culled = 0;   // nothing left after clipping, or zero area
+  std::uint64_t triangles_culled = 0;   // nothing left after clipping, zero area, or FaceCull
   // Triangles left out of a block row's tile rows at once by the hi-z's coarser level (count
   // passes of one rule for every tile); their tiles are not touched.
   std::uint64_t block_rows_skipped = 0;
@@ -130,9 +130,15 @@ struct Counters {
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters);
 
-// The same, each triangle t with the id ids[t]: many objects' faces in one draw.
+// Which facing of a triangle a depth pass leaves out (counted as culled): none, the back
+// (clockwise on screen) or the front.
+enum class FaceCull : std::uint8_t { none, back, front };
+
+// The same, each triangle t with the id ids[t]: many objects' faces in one draw; with `cull`
+// (empty, or one per triangle), triangle t of facing cull[t] is left out.
 void draw_depth(Target& target, std::span<const glm::vec4> triangles,
-                std::span<const std::uint32_t> ids, Counters& counters);
+                std::span<const std::uint32_t> ids, Counters& counters,
+                std::span<const FaceCull> cull = {});
 
 // How a count pass uses the depth test (Everitt & Kilgard; GPU Gems 3 §11.2.1; Laine 2005).
 enum class CountRule {

@@ -87,6 +87,22 @@ std::pair<std::int32_t, std::uint32_t> FramePlan::object_of(std::uint32_t id) co
   return {static_cast<std::int32_t>(o), id - objects[static_cast<std::size_t>(o)].first_id};
 }
 
+namespace {
+
+// Whether every corner of the eye-relative box lies beyond the near plane, by a thousandth of
+// its distance (float rounding of the corners' depths is far below that).
+bool box_beyond_near_plane(const glm::vec3& lo, const glm::vec3& hi, const glm::mat4& view,
+                           float near) {
+  if (lo.x > hi.x) return false;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 c(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z);
+    if (!(-(view * glm::vec4(c, 1.0f)).z > 1.001f * near)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats) {
   FramePlan plan;
   plan_frame(scene, options, plan, stats);
@@ -130,6 +146,8 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
     }
     reach_lo = glm::min(reach_lo, op.lo);
     reach_hi = glm::max(reach_hi, op.hi);
+    op.back_faces_hidden = object.topology->report.wound_outwards &&
+                           box_beyond_near_plane(op.lo, op.hi, view, scene.camera.near);
     // Transparent casters, grouped by material in order of first use.
     op.glass_group = -1;
     if (!object.material.transparent()) continue;

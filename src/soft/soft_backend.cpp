@@ -130,18 +130,44 @@ void SoftBackend::begin_depth(Layer layer) {
 void SoftBackend::draw_depth(std::span<const std::uint32_t> objects) {
   const Scene& scene = in_->scene;
   const FramePlan& plan = in_->plan;
-  tris_.clear();
-  ids_.clear();
+  std::size_t triangles = 0;
+  bool culls = false;
   for (const std::uint32_t o : objects) {
     assert(plan.transparent(o) == (layer_ == Layer::glass));
-    const SceneObject& object = scene.objects[o];
-    const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
-    for (const std::uint32_t i : object.mesh->indices)
-      tris_.push_back(mvp * glm::vec4(object.mesh->positions[i], 1.0f));
-    const std::uint32_t first = plan.objects[o].first_id;
-    for (std::uint32_t f = 0; f < object.mesh->triangle_count(); ++f) ids_.push_back(first + f);
+    triangles += scene.objects[o].mesh->triangle_count();
+    culls = culls || plan.objects[o].back_faces_hidden;
   }
-  raster::draw_depth(target_, tris_, ids_, in_->frame.stats.depth);
+  tris_.resize(3 * triangles);
+  ids_.resize(triangles);
+  face_cull_.assign(culls ? triangles : 0, raster::FaceCull::none);
+  std::size_t at = 0;  // the object's first triangle in the draw
+  for (const std::uint32_t o : objects) {
+    const Mesh& mesh = *scene.objects[o].mesh;
+    const ObjectPlan& op = plan.objects[o];
+    const glm::mat4 mvp = plan.view_proj * op.model;
+    // Each vertex once, then each triangle's corners, in parallel for large meshes.
+    clip_vertices_.resize(mesh.positions.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v < r.end(); ++v)
+                          clip_vertices_[v] = mvp * glm::vec4(mesh.positions[v], 1.0f);
+                      });
+    // A mirroring transform shows the outward faces clockwise: its back faces look front.
+    const raster::FaceCull cull = !op.back_faces_hidden ? raster::FaceCull::none
+                                  : op.weight_sign > 0  ? raster::FaceCull::back
+                                                        : raster::FaceCull::front;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.triangle_count(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t f = r.begin(); f < r.end(); ++f) {
+                          for (int k = 0; k < 3; ++k)
+                            tris_[3 * (at + f) + k] = clip_vertices_[mesh.indices[3 * f + k]];
+                          ids_[at + f] = op.first_id + static_cast<std::uint32_t>(f);
+                          if (culls) face_cull_[at + f] = cull;
+                        }
+                      });
+    at += mesh.triangle_count();
+  }
+  raster::draw_depth(target_, tris_, ids_, in_->frame.stats.depth, face_cull_);
 }
 
 void SoftBackend::end_depth() { target_.update_tile_depth(); }

@@ -142,6 +142,21 @@ TEST(Topology, ComponentsCountSeparateShells) {
   EXPECT_TRUE(t.report.closed_manifold);
 }
 
+// Wound outwards: closed, and every part encloses a positive volume. A box turned inside out, a
+// pair with one of them inside out (as a hollow shell's cavity is), and an open box are not.
+TEST(Topology, ClosedMeshesWoundOutwardsAreTold) {
+  const Mesh a = testing::box({0, 0, 0}, {1, 1, 1}), b = testing::box({3, 0, 0}, {4, 1, 1});
+  Mesh inside_out = b;
+  for (std::size_t f = 0; f < inside_out.triangle_count(); ++f)
+    std::swap(inside_out.indices[3 * f + 1], inside_out.indices[3 * f + 2]);
+  EXPECT_TRUE(build_topology(a).report.wound_outwards);
+  EXPECT_TRUE(build_topology(testing::merged(a, b)).report.wound_outwards);
+  EXPECT_FALSE(build_topology(inside_out).report.wound_outwards);
+  EXPECT_FALSE(build_topology(testing::merged(a, inside_out)).report.wound_outwards);
+  EXPECT_FALSE(build_topology(testing::box({0, 0, 0}, {1, 1, 1}, false)).report.wound_outwards);
+  EXPECT_TRUE(build_topology(testing::tetrahedron({0, 0, 0}, 2)).report.wound_outwards);
+}
+
 // Parts are the faces joined through shared vertices, numbered in order of their first face;
 // two shells touching at one vertex are one part, and a vertex no face uses has none.
 TEST(Topology, PartsAreNumberedInFaceOrder) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <memory>
 #include <string>
 
 #include <cmath>
@@ -383,6 +384,42 @@ namespace {
 // Batching (SoftBackend::count_volumes: one draw per rule, each triangle within its own volume's
 // depth bounds) gives the image, the masks and every counter of counting volume by volume, on
 // scenes with z-pass and z-fail volumes side by side, transparent casters, and the city.
+// The depth pass leaves out the back faces of closed meshes wound outwards whose boxes lie beyond
+// the near plane: the frame is the same as with every face drawn (the same scene with those
+// topologies marked not wound outwards), with fewer triangles drawn; a box the near plane cuts
+// keeps its back faces (seen through the cut).
+TEST(Renderer, BackFacesLeftOutOfTheDepthPassChangeNoPixel) {
+  for (const char* name : {"demo", "knight", "robots", "glass"}) {
+    const Scene scene = *builtin_scene(name);
+    Scene all_faces = scene;
+    for (SceneObject& object : all_faces.objects) {
+      auto topology = std::make_shared<Topology>(*object.topology);
+      topology->report.wound_outwards = false;
+      object.topology = topology;
+    }
+    const RenderOptions options{320, 180, Method::automatic, Generator::automatic};
+    Renderer renderer = soft::soft_renderer();
+    const Frame culled = renderer.render(scene, options),
+                drawn = renderer.render(all_faces, options);
+    EXPECT_EQ(culled.object, drawn.object) << name;
+    EXPECT_EQ(culled.face, drawn.face) << name;
+    EXPECT_EQ(culled.shadowed, drawn.shadowed) << name;
+    EXPECT_EQ(culled.glass.object, drawn.glass.object) << name;
+    EXPECT_EQ(culled.image.rgba, drawn.image.rgba) << name;
+    EXPECT_GT(culled.stats.depth.triangles_culled, drawn.stats.depth.triangles_culled) << name;
+  }
+  Scene cut;
+  cut.objects.push_back(make_object("box", make_box({-1, -1, -1}, {1, 1, 1}, true), glm::mat4(1.0f),
+                                    glm::vec3(0.8f)));
+  cut.lights.push_back({glm::vec4(0, 5, 0, 1), glm::vec3(1), 1.0f});
+  cut.camera = {{0, 0, 1.05f}, {0, 0, -1}, {0, 1, 0}, 60.0f, 0.1f};  // near plane past z = 1
+  FrameStats stats;
+  const FramePlan plan = plan_frame(cut, {64, 48}, stats);
+  EXPECT_FALSE(plan.objects[0].back_faces_hidden);
+  cut.camera.position.z = 3.0f;
+  EXPECT_TRUE(plan_frame(cut, {64, 48}, stats).objects[0].back_faces_hidden);
+}
+
 TEST(Renderer, BatchedVolumesCountAsVolumeByVolume) {
   for (const char* name : {"demo", "camera-in-shadow", "light-in-view", "glass", "city:48"}) {
     const Scene scene = *builtin_scene(name);
