@@ -30,6 +30,7 @@ nlohmann::json report_json(const std::string& file, const TopologyReport& r) {
       {"degenerate_triangles", r.degenerate_triangles},
       {"components", r.components},
       {"closed_manifold", r.closed_manifold},
+      {"parts_wound_outwards", r.parts_wound_outwards},
       {"generator", std::string(to_string(resolve_generator(Generator::automatic, r)))},
   };
 }
@@ -48,6 +49,8 @@ void print_report(const std::string& file, const TopologyReport& r) {
   row("degenerate triangles", std::to_string(r.degenerate_triangles));
   row("components", std::to_string(r.components));
   row("closed 2-manifold", r.closed_manifold ? "yes" : "no");
+  row("parts wound outwards", std::to_string(r.parts_wound_outwards) +
+                                  " (closed: the depth pass leaves out their back faces)");
   const Generator g = resolve_generator(Generator::automatic, r);
   row("generator (auto)",
       std::string(to_string(g)) +

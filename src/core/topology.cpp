@@ -216,15 +216,24 @@ Topology build_topology(const Mesh& mesh, const WeldOptions& options) {
     if (part == Topology::kNoPart) part = static_cast<std::uint32_t>(r.components++);
     topo.vertex_part[v] = part;
   }
-  if (r.closed_manifold) {  // six times each part's signed volume, in double
-    std::vector<double> volume(r.components, 0.0);
-    for (std::size_t f = 0; f < topo.face_count(); ++f) {
-      const glm::dvec3 a(topo.positions[topo.face_vertices[3 * f]]);
-      const glm::dvec3 b(topo.positions[topo.face_vertices[3 * f + 1]]);
-      const glm::dvec3 c(topo.positions[topo.face_vertices[3 * f + 2]]);
-      volume[topo.vertex_part[topo.face_vertices[3 * f]]] += glm::dot(a, glm::cross(b, c));
-    }
-    r.wound_outwards = std::all_of(volume.begin(), volume.end(), [](double v) { return v > 0; });
+  // Parts wound outwards: every edge of the part regular with two faces (1: an edge seen; 2: an
+  // open or irregular one), and six times the part's signed volume, in double, positive.
+  std::vector<std::uint8_t> edges_seen(r.components, 0);
+  for (std::size_t e = 0; e < topo.regular_edge_count(); ++e)
+    edges_seen[topo.vertex_part[topo.edge_vertices[e][0]]] |=
+        topo.edge_faces[e][1] == no_face ? 2 : 1;
+  for (const IndexPair& e : topo.irregular_vertices) edges_seen[topo.vertex_part[e[0]]] |= 2;
+  std::vector<double> volume(r.components, 0.0);
+  for (std::size_t f = 0; f < topo.face_count(); ++f) {
+    const glm::dvec3 a(topo.positions[topo.face_vertices[3 * f]]);
+    const glm::dvec3 b(topo.positions[topo.face_vertices[3 * f + 1]]);
+    const glm::dvec3 c(topo.positions[topo.face_vertices[3 * f + 2]]);
+    volume[topo.part_of_face(f)] += glm::dot(a, glm::cross(b, c));
+  }
+  topo.part_wound_outwards.resize(r.components);
+  for (std::size_t p = 0; p < r.components; ++p) {
+    topo.part_wound_outwards[p] = edges_seen[p] == 1 && volume[p] > 0.0;
+    r.parts_wound_outwards += topo.part_wound_outwards[p];
   }
   return topo;
 }

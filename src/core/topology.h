@@ -42,10 +42,11 @@ struct TopologyReport {
   // solid and the standard (silhouette) generator is exact on it. Vertex-non-manifold meshes
   // (two solids touching at a vertex) still qualify: the silhouette method only needs edges.
   bool closed_manifold = false;
-  // Closed manifold, and each part encloses a positive volume: wound outwards. Seen from outside
-  // its bounds, every ray enters the solid through a front (counter-clockwise) face first, so
-  // back faces are never the nearest surface.
-  bool wound_outwards = false;
+  // Parts (Topology's) wound outwards: closed (each of their edges has two faces, running it
+  // opposite ways) and enclosing a positive volume. Seen from outside their bounds, every ray
+  // enters such a part through a front (counter-clockwise) face first, so its back faces are
+  // never the nearest surface.
+  std::size_t parts_wound_outwards = 0;
 };
 
 // Face reference of an irregular edge: face index in the upper bits, and in bit 0 whether the
@@ -106,6 +107,9 @@ struct Topology {
   static constexpr std::uint32_t kNoPart = 0xffffffffu;
   std::vector<std::uint32_t> vertex_part;
   std::size_t part_count() const { return report.components; }
+  // Per part: 1 where it is wound outwards (TopologyReport::parts_wound_outwards).
+  std::vector<std::uint8_t> part_wound_outwards;
+  std::uint32_t part_of_face(std::size_t f) const { return vertex_part[face_vertices[3 * f]]; }
 
   // --- build products kept for callers ---
   std::vector<std::uint32_t> vertex_remap;  // input vertex index -> welded vertex index

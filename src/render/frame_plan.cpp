@@ -146,7 +146,7 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
     }
     reach_lo = glm::min(reach_lo, op.lo);
     reach_hi = glm::max(reach_hi, op.hi);
-    op.back_faces_hidden = object.topology->report.wound_outwards &&
+    op.back_faces_hidden = object.topology->report.parts_wound_outwards > 0 &&
                            box_beyond_near_plane(op.lo, op.hi, view, scene.camera.near);
     // Transparent casters, grouped by material in order of first use.
     op.glass_group = -1;

@@ -127,9 +127,9 @@ struct ObjectPlan {
   int glass_group = -1;  // index into FramePlan::glass, or -1 for an opaque object
   // Its bounding box, eye-relative (lo > hi for an object without vertices).
   glm::vec3 lo{0.0f}, hi{0.0f};
-  // Its back faces are never the nearest surface, so a depth pass may leave them out: its mesh
-  // is wound outwards (TopologyReport::wound_outwards) and its box lies wholly beyond the near
-  // plane, so that every ray from the eye meets a front face of it first.
+  // The back faces of its parts wound outwards (Topology::part_wound_outwards) are never the
+  // nearest surface, so a depth pass may leave them out: it has such parts and its box lies
+  // wholly beyond the near plane, so that every ray from the eye meets a front face of each first.
   bool back_faces_hidden = false;
 };
 

@@ -143,6 +143,7 @@ void SoftBackend::draw_depth(std::span<const std::uint32_t> objects) {
   std::size_t at = 0;  // the object's first triangle in the draw
   for (const std::uint32_t o : objects) {
     const Mesh& mesh = *scene.objects[o].mesh;
+    const Topology& topology = *scene.objects[o].topology;
     const ObjectPlan& op = plan.objects[o];
     const glm::mat4 mvp = plan.view_proj * op.model;
     // Each vertex once, then each triangle's corners, in parallel for large meshes.
@@ -162,7 +163,8 @@ void SoftBackend::draw_depth(std::span<const std::uint32_t> objects) {
                           for (int k = 0; k < 3; ++k)
                             tris_[3 * (at + f) + k] = clip_vertices_[mesh.indices[3 * f + k]];
                           ids_[at + f] = op.first_id + static_cast<std::uint32_t>(f);
-                          if (culls) face_cull_[at + f] = cull;
+                          if (culls && topology.part_wound_outwards[topology.part_of_face(f)])
+                            face_cull_[at + f] = cull;
                         }
                       });
     at += mesh.triangle_count();

@@ -142,19 +142,25 @@ TEST(Topology, ComponentsCountSeparateShells) {
   EXPECT_TRUE(t.report.closed_manifold);
 }
 
-// Wound outwards: closed, and every part encloses a positive volume. A box turned inside out, a
-// pair with one of them inside out (as a hollow shell's cavity is), and an open box are not.
+// Parts wound outwards: closed, and enclosing a positive volume. A box turned inside out (as a
+// hollow shell's cavity is) and an open box are not; the other parts of their mesh still are.
 TEST(Topology, ClosedMeshesWoundOutwardsAreTold) {
   const Mesh a = testing::box({0, 0, 0}, {1, 1, 1}), b = testing::box({3, 0, 0}, {4, 1, 1});
   Mesh inside_out = b;
   for (std::size_t f = 0; f < inside_out.triangle_count(); ++f)
     std::swap(inside_out.indices[3 * f + 1], inside_out.indices[3 * f + 2]);
-  EXPECT_TRUE(build_topology(a).report.wound_outwards);
-  EXPECT_TRUE(build_topology(testing::merged(a, b)).report.wound_outwards);
-  EXPECT_FALSE(build_topology(inside_out).report.wound_outwards);
-  EXPECT_FALSE(build_topology(testing::merged(a, inside_out)).report.wound_outwards);
-  EXPECT_FALSE(build_topology(testing::box({0, 0, 0}, {1, 1, 1}, false)).report.wound_outwards);
-  EXPECT_TRUE(build_topology(testing::tetrahedron({0, 0, 0}, 2)).report.wound_outwards);
+  const auto outwards = [](const Mesh& m) {
+    const Topology t = build_topology(m);
+    return std::make_pair(t.report.parts_wound_outwards, t.part_wound_outwards);
+  };
+  using Parts = std::vector<std::uint8_t>;
+  EXPECT_EQ(outwards(a), std::make_pair(std::size_t{1}, Parts{1}));
+  EXPECT_EQ(outwards(testing::merged(a, b)), std::make_pair(std::size_t{2}, Parts{1, 1}));
+  EXPECT_EQ(outwards(inside_out), std::make_pair(std::size_t{0}, Parts{0}));
+  EXPECT_EQ(outwards(testing::merged(a, inside_out)), std::make_pair(std::size_t{1}, Parts{1, 0}));
+  const Mesh open = testing::box({0, 0, 0}, {1, 1, 1}, false);
+  EXPECT_EQ(outwards(testing::merged(open, b)), std::make_pair(std::size_t{1}, Parts{0, 1}));
+  EXPECT_EQ(outwards(testing::tetrahedron({0, 0, 0}, 2)), std::make_pair(std::size_t{1}, Parts{1}));
 }
 
 // Parts are the faces joined through shared vertices, numbered in order of their first face;

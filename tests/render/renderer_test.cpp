@@ -16,6 +16,7 @@
 #include "render/heatmap.h"
 #include "render/shading.h"
 #include "scene/scene.h"
+#include "scene/stage.h"
 #include "soft/soft_backend.h"
 
 namespace shadowvol {
@@ -384,17 +385,19 @@ namespace {
 // Batching (SoftBackend::count_volumes: one draw per rule, each triangle within its own volume's
 // depth bounds) gives the image, the masks and every counter of counting volume by volume, on
 // scenes with z-pass and z-fail volumes side by side, transparent casters, and the city.
-// The depth pass leaves out the back faces of closed meshes wound outwards whose boxes lie beyond
-// the near plane: the frame is the same as with every face drawn (the same scene with those
-// topologies marked not wound outwards), with fewer triangles drawn; a box the near plane cuts
-// keeps its back faces (seen through the cut).
+// The depth pass leaves out the back faces of the parts wound outwards of objects whose boxes lie
+// beyond the near plane: the frame is the same as with every face drawn (the same scene with no
+// part marked wound outwards), with fewer triangles drawn; a box the near plane cuts keeps its
+// back faces (seen through the cut).
 TEST(Renderer, BackFacesLeftOutOfTheDepthPassChangeNoPixel) {
-  for (const char* name : {"demo", "knight", "robots", "glass"}) {
-    const Scene scene = *builtin_scene(name);
+  for (const char* name : {"demo", "knight", "robots", "glass", "stage:cad"}) {
+    const Scene scene =
+        std::string_view(name) == "stage:cad" ? *load_stage("cad") : *builtin_scene(name);
     Scene all_faces = scene;
     for (SceneObject& object : all_faces.objects) {
       auto topology = std::make_shared<Topology>(*object.topology);
-      topology->report.wound_outwards = false;
+      topology->report.parts_wound_outwards = 0;
+      std::fill(topology->part_wound_outwards.begin(), topology->part_wound_outwards.end(), 0);
       object.topology = topology;
     }
     const RenderOptions options{320, 180, Method::automatic, Generator::automatic};
