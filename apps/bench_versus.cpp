@@ -87,6 +87,11 @@ Expected<void> versus_embree(const Scene& scene, const RenderOptions& options, i
     if (f == 0) continue;
     bvh += build_ms, primary += e.ms_primary, shadow += e.ms_shadow;
     depth += frame.stats.ms_depth, points_ms += rebuilt_ms, hybrid_shadow += rays_ms;
+    versus.embree_built.push_back(build_ms + e.ms_primary + e.ms_shadow);
+    versus.hybrid_built.push_back(build_ms + rays_ms);
+    if (animate) continue;  // a moving caster's BVH cannot be kept
+    versus.embree_kept.push_back(e.ms_primary + e.ms_shadow);
+    versus.hybrid_kept.push_back(rays_ms);
   }
   for (double* x : {&bvh, &primary, &shadow, &depth, &points_ms, &hybrid_shadow}) *x /= frames;
   const double built = bvh + primary + shadow, kept = primary + shadow;
@@ -128,6 +133,7 @@ Expected<void> versus_embree(const Scene& scene, const RenderOptions& options, i
 void versus_gl(const MeasuredFrame& ours, const FrameTiming& gl, const std::string& device,
                Versus& versus) {
   const MeasuredFrame classic = measured(gl);
+  versus.gl = gl.ms_per_frame;
   versus.json["gl_classic"] = {{"device", device},
                                {"frame_ms", classic.frame_ms},
                                {"depth_ms", classic.depth_ms},
@@ -150,6 +156,31 @@ void versus_cold(const MeasuredFrame& ours, Versus& versus) {
   versus.json["ratios"]["first_frame_over_frame"] = ours.first_frame_ms / ours.frame_ms;
   versus.text += format("%-16s first (cold) frame %.2f ms / frame: %s\n", "", ours.first_frame_ms,
                         against(ours.first_frame_ms / ours.frame_ms, "<=", 1.5).c_str());
+}
+
+std::vector<PlotPanel> versus_panels(const std::string& scene, const FrameTiming& ours,
+                                     const Versus& versus) {
+  const glm::vec3 ours_color{0.80f, 0.33f, 0.10f}, built{0.15f, 0.35f, 0.75f},
+      kept{0.45f, 0.70f, 0.95f}, gl_color{0.30f, 0.60f, 0.25f};
+  std::vector<double> volumes_counts;
+  for (const FrameStats& s : ours.stats_per_frame)
+    volumes_counts.push_back(s.ms_volumes + s.ms_counts);
+  std::vector<PlotPanel> panels;
+  const auto panel = [&](std::string title, std::vector<PlotSeries> series) {
+    std::erase_if(series, [](const PlotSeries& s) { return s.values.empty(); });
+    if (series.size() > 1)
+      panels.push_back({scene + ": " + std::move(title), std::move(series), {}});
+  };
+  // Frames against Embree ray casting; volumes and counts against the hybrid's shadow rays.
+  panel("frame vs Embree, ms", {{"shadowvol", ours_color, ours.ms_per_frame},
+                                {"baseline, BVH built", built, versus.embree_built},
+                                {"baseline, BVH kept", kept, versus.embree_kept}});
+  panel("shadows vs hybrid, ms", {{"shadowvol", ours_color, volumes_counts},
+                                  {"baseline, BVH built", built, versus.hybrid_built},
+                                  {"baseline, BVH kept", kept, versus.hybrid_kept}});
+  panel("frame vs gl, ms",
+        {{"shadowvol", ours_color, ours.ms_per_frame}, {"gl classic", gl_color, versus.gl}});
+  return panels;
 }
 
 }  // namespace shadowvol

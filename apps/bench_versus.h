@@ -15,10 +15,12 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "plot.h"
 #include "render/frame_timing.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -47,11 +49,19 @@ struct MeasuredFrame {
 };
 MeasuredFrame measured(const FrameTiming& timing);
 
-// The comparison of one scene: figures and ratios as JSON (`versus`) and as lines of text.
+// The comparison of one scene: figures and ratios as JSON (`versus`) and as lines of text, and
+// the baselines' times frame by frame (empty where not timed) for the plot.
 struct Versus {
   nlohmann::json json = nlohmann::json::object();
   std::string text;
+  std::vector<double> embree_built, embree_kept, hybrid_built, hybrid_kept, gl;
 };
+
+// The plot's panels of one scene (`bench --versus --plot`): shadowvol's frame against Embree's,
+// its volumes and counts against the hybrid's shadow rays, and its frame against the classic gl
+// frame, each frame by frame.
+std::vector<PlotPanel> versus_panels(const std::string& scene, const FrameTiming& ours,
+                                     const Versus& versus);
 
 // Times Embree's frame and the hybrid's over `frames` frames after a warm-up (the scene's
 // animation frames 1 .. frames where `animate`), the hybrid's depth pass by `renderer` (the

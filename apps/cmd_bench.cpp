@@ -16,6 +16,8 @@
 #include "bench_suite.h"
 #include "bench_versus.h"
 #include "cli.h"
+#include "image_file.h"
+#include "plot.h"
 #include "render/frame_json.h"
 #include "render/frame_timing.h"
 #include "scene/city.h"
@@ -56,7 +58,10 @@ int bench(const BenchArgs& args) {
     if (!parsed) return fail("--versus: " + parsed.error().message);
     baselines = *parsed;
   }
+  if (!args.plot.empty() && !baselines.any())
+    return fail("--plot needs --suite spsv, cc or city, or --versus");
   nlohmann::json out = nlohmann::json::array();
+  Chart chart;  // --plot: the comparisons' panels
   const bool json = args.json->count() > 0;
   StatusLine status;
   const bool stages = !args.stages.empty();
@@ -140,6 +145,13 @@ int bench(const BenchArgs& args) {
         if (!ok) return fail(ok.error().message);
       }
       row["versus"] = versus.json;
+      for (PlotPanel& panel : versus_panels(resolved->scene.name, t[0], versus))
+        chart.panels.push_back(std::move(panel));
+      chart.title = "shadowvol (" + backend + ") against its baselines, " +
+                    std::to_string(options.width) + "x" + std::to_string(options.height) + ", " +
+                    std::to_string(args.frames) + (args.animate ? " animated" : "") + " frames";
+      chart.x_label = "frame";
+      chart.columns = classic ? 3 : 2;
     }
     if (json) {
       out.push_back(row);
@@ -158,6 +170,11 @@ int bench(const BenchArgs& args) {
     std::printf("%s", versus.text.c_str());
   }
   if (json) std::cout << out.dump(2) << "\n";
+  if (!args.plot.empty()) {
+    if (auto ok = write_png(args.plot, draw_chart(chart)); !ok) return fail(ok.error().message);
+    std::fprintf(json ? stderr : stdout, "wrote %s (the frames against the baselines)\n",
+                 args.plot.c_str());
+  }
   return 0;
 }
 
@@ -257,8 +274,8 @@ int city_suite(const BenchArgs& args) {
 
 int suite(const BenchArgs& args) {
   if (args.suite.empty())
-    return fail(std::string(args.csv.empty() ? "--plot" : "--csv") +
-                " needs --suite spsv, cc or city");
+    return fail(args.csv.empty() ? "--plot needs --suite spsv, cc or city, or --versus"
+                                 : "--csv needs --suite spsv, cc or city");
   if (args.suite == "cc") return cc_suite(args);
   if (args.suite == "city") return city_suite(args);
   if (args.suite != "spsv")
@@ -279,7 +296,8 @@ int suite(const BenchArgs& args) {
 int run(const BenchArgs& args) {
   if (args.given("--city-sizes") && args.suite != "city")
     return fail("--city-sizes needs --suite city");
-  if (!args.suite.empty() || !args.csv.empty() || !args.plot.empty()) return suite(args);
+  if (!args.suite.empty() || !args.csv.empty() || (!args.plot.empty() && args.versus.empty()))
+    return suite(args);
   if (!args.json_file.empty())
     return fail("--json " + args.json_file + ": a file is for --suite; without it --json prints");
   return bench(args);
@@ -335,7 +353,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "With --suite: write one row per scene, method and frame to this file");
   cmd->add_option("--plot", args->plot,
                   "With --suite: draw every counter's per-frame series, per scene and method, to "
-                  "this PNG");
+                  "this PNG; with --versus: each scene's frames against the baselines'");
   cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

@@ -25,6 +25,8 @@ std::vector<FrameTiming> time_frames(std::span<const TimedRenderer> renderers, i
       }
       timings[r].frame_ms += ms;
       timings[r].total += out[r].stats;
+      timings[r].ms_per_frame.push_back(ms);
+      timings[r].stats_per_frame.push_back(out[r].stats);
     }
   }
   for (FrameTiming& t : timings) {

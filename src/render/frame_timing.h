@@ -22,9 +22,11 @@ struct TimedRenderer {
 
 struct FrameTiming {
   int frames = 0;
-  double frame_ms = 0.0;        // mean wall time of a frame
-  double first_frame_ms = 0.0;  // the warm-up round's frame: cold where the renderer is new
-  FrameStats total;             // the frames' stats added up
+  double frame_ms = 0.0;             // mean wall time of a frame
+  double first_frame_ms = 0.0;       // the warm-up round's frame: cold where the renderer is new
+  FrameStats total;                  // the frames' stats added up
+  std::vector<double> ms_per_frame;  // each timed frame's wall time
+  std::vector<FrameStats> stats_per_frame;  // and its stats
 };
 
 // One round to warm up (volumes built, shaders compiled, buffers sized), then `frames` rounds,
