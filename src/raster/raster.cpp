@@ -15,8 +15,10 @@
 #include <type_traits>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "core/clip_polygon.h"
+#include "raster/huge_pages.h"
 
 #ifdef __AVX__
 #include <immintrin.h>
@@ -461,10 +463,15 @@ Target::Target(int w, int h)
       height(h),
       tiles_x((w + kTileSize - 1) / kTileSize),
       tiles_y((h + kTileSize - 1) / kTileSize),
-      depth(static_cast<std::size_t>(w) * h, 0.0f),
-      count(static_cast<std::size_t>(w) * h, 0),
-      id(static_cast<std::size_t>(w) * h, kNoId),
       tile_depth(static_cast<std::size_t>(tiles_x) * tiles_y) {
+  // In huge pages, side by side: each page's first touch is a page fault.
+  const auto pixels = static_cast<std::size_t>(w) * h;
+  const auto sized = [pixels](auto& buffer, auto value) {
+    reserve_in_huge_pages(buffer, pixels);
+    buffer.assign(pixels, value);
+  };
+  tbb::parallel_invoke([&] { sized(depth, 0.0f); }, [&] { sized(count, 0); },
+                       [&] { sized(id, kNoId); });
   blocks_x = (tiles_x + kBlockTiles - 1) / kBlockTiles;
   blocks_y = (tiles_y + kBlockTiles - 1) / kBlockTiles;
   block_depth.resize(static_cast<std::size_t>(blocks_x) * blocks_y);

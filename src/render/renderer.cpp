@@ -5,6 +5,9 @@
 #include <ranges>
 #include <utility>
 
+#include <tbb/parallel_invoke.h>
+
+#include "raster/huge_pages.h"
 #include "render/volume_overlay.h"
 
 namespace shadowvol {
@@ -28,6 +31,23 @@ void size_layer(SurfaceLayer& layer, std::size_t lights, std::size_t pixels, boo
   for (std::vector<std::uint8_t>& mask : layer.shadowed) mask.resize(pixels);
   layer.transmitted.resize(glass ? lights : 0);
   for (std::vector<glm::vec3>& light : layer.transmitted) light.resize(pixels);
+}
+
+// Sizes a frame's per-pixel buffers in huge pages (raster/huge_pages.h), side by side: at a new
+// size each page's first touch is a page fault, which the cores then take at once rather than
+// one after another within the passes.
+void size_frame(Frame& frame, std::size_t lights, std::size_t pixels, bool glass) {
+  const auto sized = [](auto& buffer, std::size_t n) {
+    raster::reserve_in_huge_pages(buffer, n);
+    buffer.resize(n);
+  };
+  frame.shadowed.resize(lights);
+  tbb::parallel_invoke([&] { sized(frame.object, pixels); }, [&] { sized(frame.face, pixels); },
+                       [&] { sized(frame.image.rgba, 4 * pixels); },
+                       [&] {
+                         for (std::vector<std::uint8_t>& mask : frame.shadowed) sized(mask, pixels);
+                         size_layer(frame, lights, pixels, glass);
+                       });
 }
 
 // Runs one step of the frame and adds its time into `into`, the backend's work included.
@@ -80,6 +100,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   if (clamps_continuous(options.clamp) && !costs_.measured())
     costs_ = backend_->measure_volume_costs();
   stats.volume_costs = costs_;
+  if (read_back && frame.object.size() != pixels) size_frame(frame, lights, pixels, glass);
   backend_->begin_frame(in);
   // The scene BVH made current for this frame's boxes, where occlusion culling walks it.
   if (options.occlusion != Occlusion::none) occlusion_.begin_frame(plan_, stats);
