@@ -3,6 +3,8 @@
 // the side the eye sees; a vertical gradient behind everything; sRGB out.
 #pragma once
 
+#include <array>
+#include <bit>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -24,8 +26,27 @@ inline float specular_power(float cos_half) {
 // The background at row y of h (row 0 at the top).
 glm::vec3 background(int y, int h);
 float to_srgb(float linear);
+
 // lround(to_srgb(linear) * 255), exactly, by a search among the 255 linear values where the 8-bit
 // code steps (found once): a frame encodes millions of channels, and pow is most of its cost.
-std::uint8_t to_srgb8(float linear);
+// Floats in [0, 1) fall into buckets by their top bits (2^15 neighbouring floats each), each
+// narrower than the gap between two codes' first values, so that a bucket's code is the code of
+// its least float, or one more from where the next code begins (steps[code]).
+struct SrgbTable {
+  static constexpr int kDropBits = 15;
+  static constexpr std::uint32_t kOne = 0x3f800000u;  // the bits of 1.0f
+  std::array<std::uint8_t, (kOne >> kDropBits)> bucket_code;
+  std::array<float, 256> steps;  // steps[k]: the least float whose code is more than k
+};
+const SrgbTable& srgb_table();  // made on first use
+// With the table in hand: a loop over pixels takes it once.
+inline std::uint8_t to_srgb8(float linear, const SrgbTable& table) {
+  if (!(linear > 0.0f)) return 0;  // NaN too, as to_srgb's clamp makes it
+  if (!(linear < 1.0f)) return 255;
+  const std::uint8_t c =
+      table.bucket_code[std::bit_cast<std::uint32_t>(linear) >> SrgbTable::kDropBits];
+  return static_cast<std::uint8_t>(c + (linear >= table.steps[c]));
+}
+inline std::uint8_t to_srgb8(float linear) { return to_srgb8(linear, srgb_table()); }
 
 }  // namespace shadowvol::shading

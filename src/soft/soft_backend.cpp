@@ -190,12 +190,30 @@ void SoftBackend::read_ids(Layer, SurfaceLayer& out) {
   const std::size_t pixels = target_.id.size();
   out.object.resize(pixels);
   out.face.resize(pixels);
-  tbb::parallel_for(std::size_t{0}, pixels, [&](std::size_t p) {
-    const std::uint32_t id = target_.id[p];
-    std::tie(out.object[p], out.face[p]) = id == raster::Target::kNoId
-                                               ? std::pair<std::int32_t, std::uint32_t>{-1, 0}
-                                               : in_->plan.object_of(id);
-  });
+  const FramePlan& plan = in_->plan;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, pixels, 4096),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        // Neighbouring pixels mostly show one object: its id range is tried first.
+        std::uint32_t first = 1, end = 0;
+        std::int32_t object = -1;
+        for (std::size_t p = r.begin(); p < r.end(); ++p) {
+          const std::uint32_t id = target_.id[p];
+          if (id >= plan.id_count) {  // kNoId: no surface
+            out.object[p] = -1, out.face[p] = 0;
+            continue;
+          }
+          if (id < first || id >= end) {
+            object = plan.object_of(id).first;
+            const ObjectPlan& op = plan.objects[static_cast<std::size_t>(object)];
+            first = op.first_id;
+            end = first +
+                  static_cast<std::uint32_t>(
+                      in_->scene.objects[static_cast<std::size_t>(object)].mesh->triangle_count());
+          }
+          out.object[p] = object, out.face[p] = id - first;
+        }
+      });
 }
 
 void SoftBackend::begin_light_map(std::size_t) {
@@ -496,6 +514,7 @@ void SoftBackend::shade() {
       glass ? std::span<const float>(opaque_depth_) : glass_depth;
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& rows) {
     ShadeRows& mine = shade_rows_.local();
+    const shading::SrgbTable& srgb = shading::srgb_table();
     ShadeRow &surface = mine.surface, &through = mine.through;
     surface.resize(static_cast<std::size_t>(w));
     if (glass) through.resize(static_cast<std::size_t>(w));
@@ -511,7 +530,7 @@ void SoftBackend::shade() {
         if (glass && frame.glass.object[p] >= 0)
           color += scene.objects[static_cast<std::size_t>(frame.glass.object[p])].material.opacity *
                    through.color(x);
-        for (int k = 0; k < 3; ++k) frame.image.rgba[4 * p + k] = shading::to_srgb8(color[k]);
+        for (int k = 0; k < 3; ++k) frame.image.rgba[4 * p + k] = shading::to_srgb8(color[k], srgb);
         frame.image.rgba[4 * p + 3] = 255;
       }
     }
