@@ -101,12 +101,20 @@ struct Setup {
   std::int64_t min_y, max_y;  // subpixel rows of the bounding box: which bands it meets
 };
 
+// The nearest integer, ties to even (the default rounding mode), by adding and taking away
+// 1.5 * 2^52: exact for |x| < 2^51, far beyond the guard band's subpixels (2^24), and without
+// llround's library call (two per vertex of every triangle).
+inline std::int64_t round_to_integer(double x) {
+  constexpr double kShifter = 6755399441055744.0;  // 1.5 * 2^52
+  return static_cast<std::int64_t>((x + kShifter) - kShifter);
+}
+
 ScreenVertex to_screen(const glm::vec4& c, int width, int height) {
   const double inv_w = 1.0 / c.w;
   const double sx = (c.x * inv_w + 1.0) * 0.5 * width * kSubpixels;
   const double sy = (1.0 - c.y * inv_w) * 0.5 * height * kSubpixels;
   const double z = c.z * inv_w;
-  return {std::llround(sx), std::llround(sy), static_cast<float>(std::clamp(z, 0.0, 1.0))};
+  return {round_to_integer(sx), round_to_integer(sy), static_cast<float>(std::clamp(z, 0.0, 1.0))};
 }
 
 bool setup(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, Setup& s) {
@@ -184,7 +192,10 @@ bool slab_extent(const Setup& s, int y0, int y1, int width, SlabExtent& out) {
       out.zhi = std::max(out.zhi, z);
     }
   };
-  for (int i = 0; i < 3; ++i) {
+  // A triangle wholly within the slab (most small ones) is its own intersection with it.
+  const bool within = double(s.min_y) >= top && double(s.max_y) <= bottom;
+  for (int i = 0; within && i < 3; ++i) corner(double(s.v[i].x), double(s.v[i].y));
+  for (int i = 0; !within && i < 3; ++i) {
     const ScreenVertex& p = s.v[i];
     const ScreenVertex& q = s.v[(i + 1) % 3];
     const double a = std::max<double>(std::min(p.y, q.y), top);
