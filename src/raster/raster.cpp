@@ -522,7 +522,7 @@ void Target::take_counts_into(std::span<glm::vec3> sum, const glm::vec3& per_cou
 }
 
 void Target::update_tile_depth() {
-  for (int ty = 0; ty < tiles_y; ++ty)
+  tbb::parallel_for(0, tiles_y, [&](int ty) {
     for (int tx = 0; tx < tiles_x; ++tx) {
       TileDepth bounds{1.0f, 0.0f};
       for (int y = ty * kTileSize; y < std::min(height, (ty + 1) * kTileSize); ++y)
@@ -533,6 +533,7 @@ void Target::update_tile_depth() {
         }
       tile_depth[static_cast<std::size_t>(ty) * tiles_x + tx] = bounds;
     }
+  });
   std::fill(block_depth.begin(), block_depth.end(), TileDepth{1.0f, 0.0f});
   for (int ty = 0; ty < tiles_y; ++ty)
     for (int tx = 0; tx < tiles_x; ++tx) {
