@@ -18,7 +18,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/clip_polygon.h"
-#include "raster/huge_pages.h"
 
 #ifdef __AVX__
 #include <immintrin.h>
@@ -475,14 +474,10 @@ Target::Target(int w, int h)
       tiles_x((w + kTileSize - 1) / kTileSize),
       tiles_y((h + kTileSize - 1) / kTileSize),
       tile_depth(static_cast<std::size_t>(tiles_x) * tiles_y) {
-  // In huge pages, side by side: each page's first touch is a page fault.
+  // Side by side: each page's first touch is a page fault.
   const auto pixels = static_cast<std::size_t>(w) * h;
-  const auto sized = [pixels](auto& buffer, auto value) {
-    reserve_in_huge_pages(buffer, pixels);
-    buffer.assign(pixels, value);
-  };
-  tbb::parallel_invoke([&] { sized(depth, 0.0f); }, [&] { sized(count, 0); },
-                       [&] { sized(id, kNoId); });
+  tbb::parallel_invoke([&] { depth.assign(pixels, 0.0f); }, [&] { count.assign(pixels, 0); },
+                       [&] { id.assign(pixels, kNoId); });
   blocks_x = (tiles_x + kBlockTiles - 1) / kBlockTiles;
   blocks_y = (tiles_y + kBlockTiles - 1) / kBlockTiles;
   block_depth.resize(static_cast<std::size_t>(blocks_x) * blocks_y);
@@ -553,12 +548,12 @@ Target::Scratch& scratch_of(Target& target) {
 
 // Clips, projects and sets up every triangle of a draw, chunks of kSetupChunk in parallel, into
 // the scratch's chunks, in order, with the tile rows each set-up triangle overlaps.
-void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
-             std::span<const FaceCull> cull = {}) {
+void prepare(Target& target, std::span<const glm::vec4> triangles, std::size_t first,
+             std::size_t count, Counters& counters, std::span<const FaceCull> cull) {
   assert(triangles.size() % 3 == 0);
   Target::Scratch& scratch = scratch_of(target);
-  const std::size_t n = triangles.size() / 3;
-  scratch.chunks = (n + kSetupChunk - 1) / kSetupChunk;
+  const std::size_t n = first + count;
+  scratch.chunks = (count + kSetupChunk - 1) / kSetupChunk;
   if (scratch.setup.size() < scratch.chunks) scratch.setup.resize(scratch.chunks);
   constexpr std::int64_t kBandHeight = std::int64_t{kTileSize} * kSubpixels;
   const auto band_of = [](std::int64_t y) {  // floor division: y may be negative
@@ -569,7 +564,8 @@ void prepare(Target& target, std::span<const glm::vec4> triangles, Counters& cou
     chunk.prepared.clear();
     chunk.ranges.clear();
     chunk.counters = {};
-    for (std::size_t t = c * kSetupChunk; t < std::min(n, (c + 1) * kSetupChunk); ++t) {
+    for (std::size_t t = first + c * kSetupChunk; t < std::min(n, first + (c + 1) * kSetupChunk);
+         ++t) {
       ++chunk.counters.triangles_in;
       Polygon poly;
       bool clipped = false;
@@ -639,10 +635,26 @@ void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangl
   });
   for (const Counters& c : scratch.band_counters) counters += c;
 }
+// A draw's triangles a batch at a time: set up (prepare), then rasterized band by band
+// (for_each_band). A set-up triangle takes some 200 bytes: a large mesh's batches reuse a few MB,
+// warm in cache, rather than one setup array of its size, first touched page by page.
+inline constexpr std::size_t kBatchTriangles = std::size_t{1} << 15;
+
+template <class PerTriangle, class InBlockRow>
+void draw_in_batches(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+                     std::span<const FaceCull> cull, PerTriangle&& per_triangle,
+                     InBlockRow&& in_block_row) {
+  const std::size_t n = triangles.size() / 3;
+  for (std::size_t first = 0; first < n; first += kBatchTriangles) {
+    prepare(target, triangles, first, std::min(kBatchTriangles, n - first), counters, cull);
+    for_each_band(target, counters, per_triangle, in_block_row);
+  }
+}
 template <class PerTriangle>
-void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangle) {
-  for_each_band(target, counters, per_triangle,
-                [](const Prepared&, int, int, int) { return true; });
+void draw_in_batches(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+                     std::span<const FaceCull> cull, PerTriangle&& per_triangle) {
+  draw_in_batches(target, triangles, counters, cull, per_triangle,
+                  [](const Prepared&, int, int, int) { return true; });
 }
 
 // The coarser hi-z (kBlockTiles): whether a fragment of the triangle in bands [first, last] of
@@ -677,8 +689,7 @@ bool may_pass_in_blocks(const Target& target, const Setup& s, int row, int first
 template <class IdOf>
 void depth_pass(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
                 IdOf id_of, std::span<const FaceCull> cull = {}) {
-  prepare(target, triangles, counters, cull);
-  for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
+  draw_in_batches(target, triangles, counters, cull, [&](const Prepared& p, int band, Counters& c) {
     const std::uint32_t id = id_of(p.triangle);
     float* depth = target.depth.data();
     std::uint32_t* ids = target.id.data();
@@ -718,7 +729,6 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles,
 
 std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthBounds bounds,
                     Counters& counters, bool stop_at_first) {
-  prepare(target, triangles, counters);
   const std::uint64_t passed_before = counters.pixels_passed;
   // Skips a tile only where every fragment lies behind every stored depth; the hi-z's nearest
   // depth may be stale (older, farther) during a depth pass, which only skips less.
@@ -727,7 +737,7 @@ std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthB
     return TileDecision{zhi < tile.zmin ? TileVerdict::skip : TileVerdict::test, CountRule::zpass};
   };
   std::atomic<bool> found{false};
-  for_each_band(target, counters, [&](const Prepared& p, int band, Counters& c) {
+  draw_in_batches(target, triangles, counters, {}, [&](const Prepared& p, int band, Counters& c) {
     if (stop_at_first && found.load(std::memory_order_relaxed)) return;
     const float* depth = target.depth.data();
     raster(target, p.setup, band, c, nullptr, StripInPixels{}, tile_test,
@@ -783,7 +793,6 @@ void count_pass(Target& target, std::span<const glm::vec4> triangles,
   assert(weights.size() * 3 == triangles.size());
   assert(target.tile_work.empty() ||
          target.tile_work.size() == static_cast<std::size_t>(target.tiles_x) * target.tiles_y);
-  prepare(target, triangles, counters);
   // A tile is skipped when no fragment can pass the rule's test (Laine 2005 §5): z-pass needs
   // some fragment nearer (greater) than some stored depth, z-fail some fragment at or behind
   // one. It is accepted whole when every fragment passes against every stored depth, within the
@@ -826,8 +835,8 @@ void count_pass(Target& target, std::span<const glm::vec4> triangles,
     return !blockwise ||
            may_pass_in_blocks(target, p.setup, row, first, last, bounds_of(p.triangle), zpass_test);
   };
-  for_each_band(
-      target, counters,
+  draw_in_batches(
+      target, triangles, counters, {},
       [&](const Prepared& p, int band, Counters& c) {
         // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
         // it subtract; cover and behind: every face in front of it, or behind it, adds.

@@ -7,7 +7,6 @@
 
 #include <tbb/parallel_invoke.h>
 
-#include "raster/huge_pages.h"
 #include "render/volume_overlay.h"
 
 namespace shadowvol {
@@ -33,21 +32,12 @@ void size_layer(SurfaceLayer& layer, std::size_t lights, std::size_t pixels, boo
   for (std::vector<glm::vec3>& light : layer.transmitted) light.resize(pixels);
 }
 
-// Sizes a frame's per-pixel buffers in huge pages (raster/huge_pages.h), side by side: at a new
-// size each page's first touch is a page fault, which the cores then take at once rather than
-// one after another within the passes.
+// Sizes a frame's per-pixel buffers side by side: at a new size each page's first touch is a
+// page fault, which the cores then take at once rather than one after another in the passes.
 void size_frame(Frame& frame, std::size_t lights, std::size_t pixels, bool glass) {
-  const auto sized = [](auto& buffer, std::size_t n) {
-    raster::reserve_in_huge_pages(buffer, n);
-    buffer.resize(n);
-  };
-  frame.shadowed.resize(lights);
-  tbb::parallel_invoke([&] { sized(frame.object, pixels); }, [&] { sized(frame.face, pixels); },
-                       [&] { sized(frame.image.rgba, 4 * pixels); },
-                       [&] {
-                         for (std::vector<std::uint8_t>& mask : frame.shadowed) sized(mask, pixels);
-                         size_layer(frame, lights, pixels, glass);
-                       });
+  tbb::parallel_invoke([&] { frame.object.resize(pixels); }, [&] { frame.face.resize(pixels); },
+                       [&] { frame.image.rgba.resize(4 * pixels); },
+                       [&] { size_layer(frame, lights, pixels, glass); });
 }
 
 // Runs one step of the frame and adds its time into `into`, the backend's work included.

@@ -12,7 +12,6 @@
 #include <glm/geometric.hpp>
 
 #include "core/projection.h"
-#include "raster/huge_pages.h"
 #include "raster/raster.h"
 
 namespace shadowvol::raster {
@@ -370,21 +369,6 @@ TEST(Raster, BlocksLeaveOutOnlyWhatTheTilesWouldReject) {
       EXPECT_LT(blocks.tiles_touched, tiles.tiles_touched);
     }
   }
-}
-
-// Asking for huge pages is a reservation: the contents stay, and a buffer with room enough is
-// left as it is.
-TEST(HugePages, ReservingKeepsTheBufferAndItsContents) {
-  std::vector<float> buffer = {1.0f, 2.0f, 3.0f};
-  reserve_in_huge_pages(buffer, std::size_t{3} << 20);  // 12 MiB: whole huge pages inside
-  EXPECT_GE(buffer.capacity(), std::size_t{3} << 20);
-  EXPECT_EQ(buffer, (std::vector<float>{1.0f, 2.0f, 3.0f}));
-  const float* data = buffer.data();
-  reserve_in_huge_pages(buffer, 10);
-  EXPECT_EQ(buffer.data(), data);
-  buffer.assign(std::size_t{3} << 20, 0.5f);  // every page touched
-  EXPECT_EQ(buffer.data(), data);
-  EXPECT_EQ(buffer.back(), 0.5f);
 }
 
 // Reversed depth keeps float's relative precision far away: two walls 1000 and 1000.01 units
