@@ -546,11 +546,23 @@ Target::Scratch& scratch_of(Target& target) {
   return *target.scratch;
 }
 
-// Clips, projects and sets up every triangle of a draw, chunks of kSetupChunk in parallel, into
-// the scratch's chunks, in order, with the tile rows each set-up triangle overlaps.
-void prepare(Target& target, std::span<const glm::vec4> triangles, std::size_t first,
-             std::size_t count, Counters& counters, std::span<const FaceCull> cull) {
-  assert(triangles.size() % 3 == 0);
+// A draw's triangles: a list of three clip-space corners each, or shared clip-space vertices and
+// three indices each (a mesh's vertices transformed once, not once per triangle using them).
+struct Triangles {
+  std::span<const glm::vec4> points;     // the corners, or the vertices
+  std::span<const std::uint32_t> indices;  // empty for a list
+  std::size_t size() const { return (indices.empty() ? points.size() : indices.size()) / 3; }
+  void corners(std::size_t t, glm::vec4 (&out)[3]) const {
+    for (std::size_t k = 0; k < 3; ++k)
+      out[k] = indices.empty() ? points[3 * t + k] : points[indices[3 * t + k]];
+  }
+};
+
+// Clips, projects and sets up triangles [first, first + count) of a draw, chunks of kSetupChunk
+// in parallel, into the scratch's chunks, in order, with the tile rows each set-up triangle
+// overlaps.
+void prepare(Target& target, const Triangles& triangles, std::size_t first, std::size_t count,
+             Counters& counters, std::span<const FaceCull> cull) {
   Target::Scratch& scratch = scratch_of(target);
   const std::size_t n = first + count;
   scratch.chunks = (count + kSetupChunk - 1) / kSetupChunk;
@@ -569,7 +581,9 @@ void prepare(Target& target, std::span<const glm::vec4> triangles, std::size_t f
       ++chunk.counters.triangles_in;
       Polygon poly;
       bool clipped = false;
-      if (!clip(&triangles[3 * t], poly, clipped)) {
+      glm::vec4 corners[3];
+      triangles.corners(t, corners);
+      if (!clip(corners, poly, clipped)) {
         ++chunk.counters.triangles_clipped;
         ++chunk.counters.triangles_culled;
         continue;
@@ -641,17 +655,17 @@ void for_each_band(Target& target, Counters& counters, PerTriangle&& per_triangl
 inline constexpr std::size_t kBatchTriangles = std::size_t{1} << 15;
 
 template <class PerTriangle, class InBlockRow>
-void draw_in_batches(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+void draw_in_batches(Target& target, const Triangles& triangles, Counters& counters,
                      std::span<const FaceCull> cull, PerTriangle&& per_triangle,
                      InBlockRow&& in_block_row) {
-  const std::size_t n = triangles.size() / 3;
+  const std::size_t n = triangles.size();
   for (std::size_t first = 0; first < n; first += kBatchTriangles) {
     prepare(target, triangles, first, std::min(kBatchTriangles, n - first), counters, cull);
     for_each_band(target, counters, per_triangle, in_block_row);
   }
 }
 template <class PerTriangle>
-void draw_in_batches(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+void draw_in_batches(Target& target, const Triangles& triangles, Counters& counters,
                      std::span<const FaceCull> cull, PerTriangle&& per_triangle) {
   draw_in_batches(target, triangles, counters, cull, per_triangle,
                   [](const Prepared&, int, int, int) { return true; });
@@ -687,7 +701,7 @@ bool may_pass_in_blocks(const Target& target, const Setup& s, int row, int first
 
 // The depth pass, triangle t with the id id_of(t).
 template <class IdOf>
-void depth_pass(Target& target, std::span<const glm::vec4> triangles, Counters& counters,
+void depth_pass(Target& target, const Triangles& triangles, Counters& counters,
                 IdOf id_of, std::span<const FaceCull> cull = {}) {
   draw_in_batches(target, triangles, counters, cull, [&](const Prepared& p, int band, Counters& c) {
     const std::uint32_t id = id_of(p.triangle);
@@ -714,7 +728,7 @@ void depth_pass(Target& target, std::span<const glm::vec4> triangles, Counters& 
 
 void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint32_t first_id,
                 Counters& counters) {
-  depth_pass(target, triangles, counters,
+  depth_pass(target, {triangles, {}}, counters,
              [first_id](std::size_t t) { return static_cast<std::uint32_t>(first_id + t); });
 }
 
@@ -724,7 +738,16 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles,
   assert(ids.size() * 3 == triangles.size());
   assert(cull.empty() || cull.size() == ids.size());
   depth_pass(
-      target, triangles, counters, [ids](std::size_t t) { return ids[t]; }, cull);
+      target, {triangles, {}}, counters, [ids](std::size_t t) { return ids[t]; }, cull);
+}
+
+void draw_depth(Target& target, std::span<const glm::vec4> vertices,
+                std::span<const std::uint32_t> indices, std::span<const std::uint32_t> ids,
+                Counters& counters, std::span<const FaceCull> cull) {
+  assert(ids.size() * 3 == indices.size());
+  assert(cull.empty() || cull.size() == ids.size());
+  depth_pass(
+      target, {vertices, indices}, counters, [ids](std::size_t t) { return ids[t]; }, cull);
 }
 
 std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthBounds bounds,
@@ -737,7 +760,7 @@ std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthB
     return TileDecision{zhi < tile.zmin ? TileVerdict::skip : TileVerdict::test, CountRule::zpass};
   };
   std::atomic<bool> found{false};
-  draw_in_batches(target, triangles, counters, {}, [&](const Prepared& p, int band, Counters& c) {
+  draw_in_batches(target, {triangles, {}}, counters, {}, [&](const Prepared& p, int band, Counters& c) {
     if (stop_at_first && found.load(std::memory_order_relaxed)) return;
     const float* depth = target.depth.data();
     raster(target, p.setup, band, c, nullptr, StripInPixels{}, tile_test,
@@ -836,7 +859,7 @@ void count_pass(Target& target, std::span<const glm::vec4> triangles,
            may_pass_in_blocks(target, p.setup, row, first, last, bounds_of(p.triangle), zpass_test);
   };
   draw_in_batches(
-      target, triangles, counters, {},
+      target, {triangles, {}}, counters, {},
       [&](const Prepared& p, int band, Counters& c) {
         // z-pass (and prefill): front faces in front of the surface add; z-fail: front faces behind
         // it subtract; cover and behind: every face in front of it, or behind it, adds.

@@ -130,46 +130,52 @@ void SoftBackend::begin_depth(Layer layer) {
 void SoftBackend::draw_depth(std::span<const std::uint32_t> objects) {
   const Scene& scene = in_->scene;
   const FramePlan& plan = in_->plan;
-  std::size_t triangles = 0;
+  std::size_t vertices = 0, triangles = 0;
   bool culls = false;
   for (const std::uint32_t o : objects) {
     assert(plan.transparent(o) == (layer_ == Layer::glass));
+    vertices += scene.objects[o].mesh->positions.size();
     triangles += scene.objects[o].mesh->triangle_count();
     culls = culls || plan.objects[o].back_faces_hidden;
   }
-  tris_.resize(3 * triangles);
+  clip_vertices_.resize(vertices);
+  indices_.resize(3 * triangles);
   ids_.resize(triangles);
   face_cull_.assign(culls ? triangles : 0, raster::FaceCull::none);
-  std::size_t at = 0;  // the object's first triangle in the draw
+  std::size_t first_vertex = 0, first_triangle = 0;  // the object's in the draw
   for (const std::uint32_t o : objects) {
     const Mesh& mesh = *scene.objects[o].mesh;
     const Topology& topology = *scene.objects[o].topology;
     const ObjectPlan& op = plan.objects[o];
     const glm::mat4 mvp = plan.view_proj * op.model;
-    // Each vertex once, then each triangle's corners, in parallel for large meshes.
-    clip_vertices_.resize(mesh.positions.size());
+    // Each vertex once, then each triangle's indices into the draw's vertices, in parallel for
+    // large meshes.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t v = r.begin(); v < r.end(); ++v)
-                          clip_vertices_[v] = mvp * glm::vec4(mesh.positions[v], 1.0f);
+                          clip_vertices_[first_vertex + v] =
+                              mvp * glm::vec4(mesh.positions[v], 1.0f);
                       });
     // A mirroring transform shows the outward faces clockwise: its back faces look front.
     const raster::FaceCull cull = !op.back_faces_hidden ? raster::FaceCull::none
                                   : op.weight_sign > 0  ? raster::FaceCull::back
                                                         : raster::FaceCull::front;
+    const auto base = static_cast<std::uint32_t>(first_vertex);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.triangle_count(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t f = r.begin(); f < r.end(); ++f) {
-                          for (int k = 0; k < 3; ++k)
-                            tris_[3 * (at + f) + k] = clip_vertices_[mesh.indices[3 * f + k]];
-                          ids_[at + f] = op.first_id + static_cast<std::uint32_t>(f);
+                          const std::size_t t = first_triangle + f;
+                          for (std::size_t k = 0; k < 3; ++k)
+                            indices_[3 * t + k] = base + mesh.indices[3 * f + k];
+                          ids_[t] = op.first_id + static_cast<std::uint32_t>(f);
                           if (culls && topology.part_wound_outwards[topology.part_of_face(f)])
-                            face_cull_[at + f] = cull;
+                            face_cull_[t] = cull;
                         }
                       });
-    at += mesh.triangle_count();
+    first_vertex += mesh.positions.size();
+    first_triangle += mesh.triangle_count();
   }
-  raster::draw_depth(target_, tris_, ids_, in_->frame.stats.depth, face_cull_);
+  raster::draw_depth(target_, clip_vertices_, indices_, ids_, in_->frame.stats.depth, face_cull_);
 }
 
 void SoftBackend::end_depth() { target_.update_tile_depth(); }

@@ -96,7 +96,8 @@ class SoftBackend final : public FrameBackend {
   std::vector<std::int32_t> weights_, prefill_weights_;
   std::vector<std::uint32_t> ids_;           // a depth batch's id per triangle
   std::vector<raster::FaceCull> face_cull_;  // and what facing of it is left out, if any
-  std::vector<glm::vec4> clip_vertices_;     // an object's vertices in clip space
+  std::vector<glm::vec4> clip_vertices_;     // a depth batch's vertices in clip space
+  std::vector<std::uint32_t> indices_;       // and its triangles' indices into them
   // count_volumes: the volumes of one rule (z-pass, z-fail), each triangle with its bounds.
   struct Batch {
     std::vector<glm::vec4> tris;
