@@ -116,9 +116,14 @@ ScreenVertex to_screen(const glm::vec4& c, int width, int height) {
   return {round_to_integer(sx), round_to_integer(sy), static_cast<float>(std::clamp(z, 0.0, 1.0))};
 }
 
+// Twice the signed area of a screen triangle, in subpixels squared (exact: 64-bit integers).
+inline std::int64_t area2(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {
+  return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+}
+
 bool setup(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, Setup& s) {
   s.v[0] = a, s.v[1] = b, s.v[2] = c;
-  s.area2 = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+  s.area2 = area2(a, b, c);
   if (s.area2 == 0) return false;
   // A triangle the viewer sees counter-clockwise (front-facing) has negative area here, since
   // y points down. Swap two vertices of those, so that every triangle is rasterized one way; the
@@ -595,9 +600,13 @@ void prepare(Target& target, const Triangles& triangles, std::size_t first, std:
       bool drawn = false;
       for (int i = 1; i + 1 < poly.n; ++i) {  // a fan: the clipped polygon is convex
         Prepared p{t, {}};
-        if (!setup(screen[0], screen[i], screen[i + 1], p.setup)) continue;
-        if (!cull.empty() && cull[t] == (p.setup.front ? FaceCull::front : FaceCull::back))
+        // The facing first, as setup finds it (negative area: front), so that a culled
+        // triangle costs no setup.
+        if (!cull.empty() && cull[t] != FaceCull::none &&
+            cull[t] == (area2(screen[0], screen[i], screen[i + 1]) < 0 ? FaceCull::front
+                                                                     : FaceCull::back))
           continue;
+        if (!setup(screen[0], screen[i], screen[i + 1], p.setup)) continue;
         drawn = true;
         const std::int64_t first =
             std::clamp<std::int64_t>(band_of(p.setup.min_y), 0, target.tiles_y);
