@@ -74,6 +74,12 @@ void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_
   std::printf("\n");
   if (counts_work)
     std::printf(
+        "  depth pass: %llu triangles in, %llu culled (back faces of closed parts, outside the "
+        "view or zero area), %llu tiles touched, %llu pixels processed\n",
+        ull(s.depth.triangles_in), ull(s.depth.triangles_culled), ull(s.depth.tiles_touched),
+        ull(s.depth.pixels_processed));
+  if (counts_work)
+    std::printf(
         "  count pass: %llu triangles in, %llu clipped, %llu left out of a block row by hi-z, "
         "%llu tiles touched, %llu skipped by hi-z or depth bounds, %llu pixels processed, %llu "
         "count updates\n",

@@ -554,7 +554,7 @@ Target::Scratch& scratch_of(Target& target) {
 // A draw's triangles: a list of three clip-space corners each, or shared clip-space vertices and
 // three indices each (a mesh's vertices transformed once, not once per triangle using them).
 struct Triangles {
-  std::span<const glm::vec4> points;     // the corners, or the vertices
+  std::span<const glm::vec4> points;       // the corners, or the vertices
   std::span<const std::uint32_t> indices;  // empty for a list
   std::size_t size() const { return (indices.empty() ? points.size() : indices.size()) / 3; }
   void corners(std::size_t t, glm::vec4 (&out)[3]) const {
@@ -603,8 +603,8 @@ void prepare(Target& target, const Triangles& triangles, std::size_t first, std:
         // The facing first, as setup finds it (negative area: front), so that a culled
         // triangle costs no setup.
         if (!cull.empty() && cull[t] != FaceCull::none &&
-            cull[t] == (area2(screen[0], screen[i], screen[i + 1]) < 0 ? FaceCull::front
-                                                                     : FaceCull::back))
+            cull[t] ==
+                (area2(screen[0], screen[i], screen[i + 1]) < 0 ? FaceCull::front : FaceCull::back))
           continue;
         if (!setup(screen[0], screen[i], screen[i + 1], p.setup)) continue;
         drawn = true;
@@ -710,8 +710,8 @@ bool may_pass_in_blocks(const Target& target, const Setup& s, int row, int first
 
 // The depth pass, triangle t with the id id_of(t).
 template <class IdOf>
-void depth_pass(Target& target, const Triangles& triangles, Counters& counters,
-                IdOf id_of, std::span<const FaceCull> cull = {}) {
+void depth_pass(Target& target, const Triangles& triangles, Counters& counters, IdOf id_of,
+                std::span<const FaceCull> cull = {}) {
   draw_in_batches(target, triangles, counters, cull, [&](const Prepared& p, int band, Counters& c) {
     const std::uint32_t id = id_of(p.triangle);
     float* depth = target.depth.data();
@@ -769,19 +769,20 @@ std::uint64_t query(Target& target, std::span<const glm::vec4> triangles, DepthB
     return TileDecision{zhi < tile.zmin ? TileVerdict::skip : TileVerdict::test, CountRule::zpass};
   };
   std::atomic<bool> found{false};
-  draw_in_batches(target, {triangles, {}}, counters, {}, [&](const Prepared& p, int band, Counters& c) {
-    if (stop_at_first && found.load(std::memory_order_relaxed)) return;
-    const float* depth = target.depth.data();
-    raster(target, p.setup, band, c, nullptr, StripInPixels{}, tile_test,
-           [depth, bounds, &found](std::size_t first, const Mask& covered, const Floats& z,
-                                   auto lanes, auto, CountRule) {
-             const Floats stored = load_row<Floats>(depth + first, lanes);
-             const Mask pass =
-                 covered & (z >= stored) & (stored >= bounds.zmin) & (stored <= bounds.zmax);
-             if (any(pass)) found.store(true, std::memory_order_relaxed);
-             return pass;
-           });
-  });
+  draw_in_batches(
+      target, {triangles, {}}, counters, {}, [&](const Prepared& p, int band, Counters& c) {
+        if (stop_at_first && found.load(std::memory_order_relaxed)) return;
+        const float* depth = target.depth.data();
+        raster(target, p.setup, band, c, nullptr, StripInPixels{}, tile_test,
+               [depth, bounds, &found](std::size_t first, const Mask& covered, const Floats& z,
+                                       auto lanes, auto, CountRule) {
+                 const Floats stored = load_row<Floats>(depth + first, lanes);
+                 const Mask pass =
+                     covered & (z >= stored) & (stored >= bounds.zmin) & (stored <= bounds.zmax);
+                 if (any(pass)) found.store(true, std::memory_order_relaxed);
+                 return pass;
+               });
+      });
   return counters.pixels_passed - passed_before;
 }
 
