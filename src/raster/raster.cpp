@@ -486,6 +486,7 @@ Target::Target(int w, int h)
   blocks_x = (tiles_x + kBlockTiles - 1) / kBlockTiles;
   blocks_y = (tiles_y + kBlockTiles - 1) / kBlockTiles;
   block_depth.resize(static_cast<std::size_t>(blocks_x) * blocks_y);
+  block_row_depth.resize(static_cast<std::size_t>(blocks_y));
   assert(w > 0 && h > 0 && w <= kMaxViewport && h <= kMaxViewport);
 }
 
@@ -494,6 +495,7 @@ void Target::clear_depth(float z) {
   std::fill(id.begin(), id.end(), kNoId);
   std::fill(tile_depth.begin(), tile_depth.end(), TileDepth{z, z});
   std::fill(block_depth.begin(), block_depth.end(), TileDepth{z, z});
+  std::fill(block_row_depth.begin(), block_row_depth.end(), TileDepth{z, z});
 }
 
 // Sweeps the buffer band by band, in parallel, as the draws use it.
@@ -541,6 +543,13 @@ void Target::update_tile_depth() {
       TileDepth& block =
           block_depth[static_cast<std::size_t>(ty / kBlockTiles) * blocks_x + tx / kBlockTiles];
       block = {std::min(block.zmin, tile.zmin), std::max(block.zmax, tile.zmax)};
+    }
+  std::fill(block_row_depth.begin(), block_row_depth.end(), TileDepth{1.0f, 0.0f});
+  for (int by = 0; by < blocks_y; ++by)
+    for (int bx = 0; bx < blocks_x; ++bx) {
+      const TileDepth& block = block_depth[static_cast<std::size_t>(by) * blocks_x + bx];
+      TileDepth& row = block_row_depth[static_cast<std::size_t>(by)];
+      row = {std::min(row.zmin, block.zmin), std::max(row.zmax, block.zmax)};
     }
 }
 
@@ -688,16 +697,21 @@ void draw_in_batches(Target& target, const Triangles& triangles, Counters& count
 // within a tile of that part, a millionth of it in all.
 bool may_pass_in_blocks(const Target& target, const Setup& s, int row, int first, int last,
                         const DepthBounds& bounds, bool zpass) {
+  // First the whole row against the triangle's vertices' depths: no slab to find.
+  const TileDepth& in_row = target.block_row_depth[static_cast<std::size_t>(row)];
+  const float vertices_lo = std::min({s.v[0].z, s.v[1].z, s.v[2].z}) - kDepthSlack;
+  const float vertices_hi = std::max({s.v[0].z, s.v[1].z, s.v[2].z}) + kDepthSlack;
+  if (in_row.zmax < bounds.zmin || in_row.zmin > bounds.zmax ||
+      !(zpass ? vertices_hi > in_row.zmin : vertices_lo <= in_row.zmax))
+    return false;
   const int y0 = first * kTileSize, y1 = std::min(target.height, (last + 1) * kTileSize) - 1;
   SlabExtent e;
   if (!slab_extent<true>(s, y0, y1, target.width, e)) return false;
   const double size = std::max(std::abs(e.zlo), std::abs(e.zhi)) +
                       2.0 * kTileSize * (std::abs(s.dzdx) + std::abs(s.dzdy));
   const double slack = kDepthSlack + 1e-6 * size;
-  const float zlo = static_cast<float>(
-      std::max<double>(std::min({s.v[0].z, s.v[1].z, s.v[2].z}) - kDepthSlack, e.zlo - slack));
-  const float zhi = static_cast<float>(
-      std::min<double>(std::max({s.v[0].z, s.v[1].z, s.v[2].z}) + kDepthSlack, e.zhi + slack));
+  const float zlo = static_cast<float>(std::max<double>(vertices_lo, e.zlo - slack));
+  const float zhi = static_cast<float>(std::min<double>(vertices_hi, e.zhi + slack));
   constexpr int kBlockPixels = kTileSize * kBlockTiles;
   for (int bx = e.px0 / kBlockPixels; bx <= e.px1 / kBlockPixels; ++bx) {
     const TileDepth& block =

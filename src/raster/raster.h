@@ -74,11 +74,12 @@ struct Target {
   int width = 0, height = 0;
   int tiles_x = 0, tiles_y = 0;
   int blocks_x = 0, blocks_y = 0;
-  std::vector<float> depth;            // window depth, 0 = far (infinity)
-  std::vector<std::int32_t> count;     // signed shadow-volume count
-  std::vector<std::uint32_t> id;       // what the depth pass left visible: kNoId or an id
-  std::vector<TileDepth> tile_depth;   // hi-z, valid after update_tile_depth()
-  std::vector<TileDepth> block_depth;  // its coarser level (kBlockTiles), valid with it
+  std::vector<float> depth;                // window depth, 0 = far (infinity)
+  std::vector<std::int32_t> count;         // signed shadow-volume count
+  std::vector<std::uint32_t> id;           // what the depth pass left visible: kNoId or an id
+  std::vector<TileDepth> tile_depth;       // hi-z, valid after update_tile_depth()
+  std::vector<TileDepth> block_depth;      // its coarser level (kBlockTiles), valid with it
+  std::vector<TileDepth> block_row_depth;  // and per row of blocks
   // Per tile, row-major: what draw_counts did there, added up while the vector holds one entry
   // per tile (the caller sizes and clears it); empty, nothing is recorded.
   std::vector<TileWork> tile_work;
