@@ -47,22 +47,25 @@ Expected<std::unique_ptr<EmbreeBaseline>> EmbreeBaseline::create() {
   return std::unique_ptr<EmbreeBaseline>(new EmbreeBaseline(std::move(state)));
 }
 
-Expected<void> EmbreeBaseline::build(const Scene& scene, double& ms) {
+Expected<void> EmbreeBaseline::build(const Scene& scene, double& ms, Bvh bvh) {
   const auto start = Clock::now();
   State& s = *state_;
   if (s.scene) rtcReleaseScene(s.scene);
   s.scene = rtcNewScene(s.device);
   // A scene rebuilt each frame: Embree's documentation pairs the dynamic flag with low or
-  // medium build quality; ray queries stay coherent (packets).
-  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_DYNAMIC);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_MEDIUM);
+  // medium build quality; one kept: high quality, slower to build, faster to trace. Ray queries
+  // stay coherent (packets) either way.
+  const RTCBuildQuality quality =
+      bvh == Bvh::rebuilt ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH;
+  rtcSetSceneFlags(s.scene, bvh == Bvh::rebuilt ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
+  rtcSetSceneBuildQuality(s.scene, quality);
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
     const Mesh& mesh = *object.mesh;
     if (mesh.indices.empty()) continue;
     const glm::mat4 model = eye_relative(object.transform, scene.camera.position);
     RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetGeometryBuildQuality(g, quality);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
     auto* i = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0,

@@ -33,6 +33,11 @@ TEST(EmbreeBaseline, TracesTheFrameTheRendererDraws) {
   // Shadow rays count surfaces facing away from the light as shadowed where something blocks
   // them; the mask holds the same, so the two agree but at shadow boundaries.
   EXPECT_NEAR(double(e.shadowed), double(shadowed), 0.05 * double(shadowed));
+  // A BVH kept (high quality) traces the same frame as one rebuilt every frame.
+  ASSERT_TRUE((*embree)->build(scene, ms, EmbreeBaseline::Bvh::kept).ok());
+  const EmbreeFrame kept = (*embree)->trace(scene, kWidth, kHeight);
+  EXPECT_EQ(kept.hits, e.hits);
+  EXPECT_EQ(kept.shadowed, e.shadowed);
 }
 
 // The hybrid: shadow rays from the points rebuilt from the frame's object and face ids find the
