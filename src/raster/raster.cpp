@@ -756,12 +756,9 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
 }
 
 void draw_depth(Target& target, std::span<const glm::vec4> triangles,
-                std::span<const std::uint32_t> ids, Counters& counters,
-                std::span<const FaceCull> cull) {
+                std::span<const std::uint32_t> ids, Counters& counters) {
   assert(ids.size() * 3 == triangles.size());
-  assert(cull.empty() || cull.size() == ids.size());
-  depth_pass(
-      target, {triangles, {}}, counters, [ids](std::size_t t) { return ids[t]; }, cull);
+  depth_pass(target, {triangles, {}}, counters, [ids](std::size_t t) { return ids[t]; });
 }
 
 void draw_depth(Target& target, std::span<const glm::vec4> vertices,

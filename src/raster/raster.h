@@ -135,13 +135,12 @@ void draw_depth(Target& target, std::span<const glm::vec4> triangles, std::uint3
 // (clockwise on screen) or the front.
 enum class FaceCull : std::uint8_t { none, back, front };
 
-// The same, each triangle t with the id ids[t]: many objects' faces in one draw; with `cull`
-// (empty, or one per triangle), triangle t of facing cull[t] is left out.
+// The same, each triangle t with the id ids[t]: many objects' faces in one draw.
 void draw_depth(Target& target, std::span<const glm::vec4> triangles,
-                std::span<const std::uint32_t> ids, Counters& counters,
-                std::span<const FaceCull> cull = {});
+                std::span<const std::uint32_t> ids, Counters& counters);
 // The same from shared clip-space vertices, triangle t's corners vertices[indices[3 t + k]]: a
-// mesh's vertices transformed once, and 12 bytes a triangle instead of 48.
+// mesh's vertices transformed once, and 12 bytes a triangle instead of 48; with `cull` (empty, or
+// one per triangle), triangle t of facing cull[t] is left out.
 void draw_depth(Target& target, std::span<const glm::vec4> vertices,
                 std::span<const std::uint32_t> indices, std::span<const std::uint32_t> ids,
                 Counters& counters, std::span<const FaceCull> cull = {});

@@ -7,7 +7,6 @@
 #include <limits>
 #include <memory>
 #include <span>
-#include <tuple>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -209,13 +208,11 @@ void SoftBackend::read_ids(Layer, SurfaceLayer& out) {
             out.object[p] = -1, out.face[p] = 0;
             continue;
           }
-          if (id < first || id >= end) {
+          if (id < first || id >= end) {  // the object's ids: up to the next one's first
             object = plan.object_of(id).first;
-            const ObjectPlan& op = plan.objects[static_cast<std::size_t>(object)];
-            first = op.first_id;
-            end = first +
-                  static_cast<std::uint32_t>(
-                      in_->scene.objects[static_cast<std::size_t>(object)].mesh->triangle_count());
+            const auto o = static_cast<std::size_t>(object);
+            first = plan.objects[o].first_id;
+            end = o + 1 < plan.objects.size() ? plan.objects[o + 1].first_id : plan.id_count;
           }
           out.object[p] = object, out.face[p] = id - first;
         }
