@@ -39,7 +39,8 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
     scenes += (scenes.empty() ? "" : ", ") + std::string(n);
   cmd->add_option("--scene", args.scene,
                   "A built-in scene (" + scenes +
-                      "; city:N and city-above:N, a city of N buildings), a scene file (.json) "
+                      "; city:N and city-above:N, a city of N buildings; night-street:N, N lamps), "
+                      "a scene file (.json) "
                       "or a mesh file")
       ->capture_default_str();
   cmd->add_option("--method", args.method,

@@ -68,6 +68,11 @@ void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_
                 options.slices, options.slices == 1 ? "" : "s", ull(s.slice_queries),
                 s.volumes_clamped_away);
   if (options.clamp != Clamp::none) std::printf("  clamping %.1f ms in all\n", s.ms_clamp);
+  if (s.volumes_out_of_range > 0 || s.scissor_pixels_saved > 0)
+    std::printf(
+        "  light ranges: %d volumes of casters beyond a light's range not built, %llu pixels "
+        "outside the lights' scissors (over all lights)\n",
+        s.volumes_out_of_range, ull(s.scissor_pixels_saved));
   std::printf("  %llu volume segments drawn", ull(s.volume_segments));
   if (s.fill > 0 || s.stencil_writes > 0)
     std::printf(", fill %llu pixels, stencil writes %llu", ull(s.fill), ull(s.stencil_writes));

@@ -15,6 +15,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
 
+#include "accel/light_reach.h"
 #include "core/names.h"
 #include "gl/shaders.h"
 #include "render/shading.h"
@@ -572,6 +573,7 @@ const GLenum kNone[] = {GL_NONE, GL_NONE};
 // is the one left visible (end_depth).
 void GlBackend::begin_depth(Layer layer) {
   layer_ = layer;
+  depth_read_ = false;
   drawn_[static_cast<int>(layer)].clear();
   Targets& t = *targets_;
   glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
@@ -978,7 +980,14 @@ VolumeCosts GlBackend::measure_volume_costs() {
   return volume_costs(small, large, volumes.vertices(), large_fill);
 }
 
-void GlBackend::begin_mask(std::size_t) {
+// A light's passes keep to its scissor (FramePlan::reach), after their targets are cleared.
+void GlBackend::scissor(std::size_t l) {
+  const raster::PixelRect& r = in_->plan.reach[l].scissor;
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(r.x0, in_->options.height - r.y1, r.x1 - r.x0, r.y1 - r.y0);  // rows from the bottom
+}
+
+void GlBackend::begin_mask(std::size_t l) {
   Targets& t = *targets_;
   into_light_map_ = false;
   mask_additive_ = settings_.counts == CountTarget::additive ||
@@ -998,6 +1007,7 @@ void GlBackend::begin_mask(std::size_t) {
     glStencilFunc(GL_ALWAYS, 0, 0xFF);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   }
+  scissor(l);
   const int strips = clamps_discrete(in_->options.clamp);
   glUseProgram(cpu_ ? volume_cpu_[strips].get() : volume_gpu_[strips].get());
   set_viewport_uniform(strips);
@@ -1005,12 +1015,13 @@ void GlBackend::begin_mask(std::size_t) {
 
 // Kim et al. Eq. 3: each count adds its caster's log transmittance, in float32 with additive
 // blending.
-void GlBackend::begin_light_map(std::size_t) {
+void GlBackend::begin_light_map(std::size_t l) {
   Targets& t = *targets_;
   into_light_map_ = true;
   const float zero[4] = {0, 0, 0, 0};
   glBindFramebuffer(GL_FRAMEBUFFER, t.light.get());
   glClearNamedFramebufferfv(t.light.get(), GL_COLOR, 0, zero);
+  scissor(l);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
   const int strips = clamps_discrete(in_->options.clamp);
@@ -1139,6 +1150,7 @@ void GlBackend::count_volume(std::size_t l, std::size_t o) {
 }
 
 void GlBackend::end_counts() {
+  glDisable(GL_SCISSOR_TEST);
   glDisable(GL_DEPTH_CLAMP);
   glDisable(GL_BLEND);
   glDisable(GL_STENCIL_TEST);  // the stencil holds the mask until the lit pass reads it
@@ -1166,6 +1178,19 @@ void GlBackend::read_mask(std::size_t l, SurfaceLayer& layer) {
                   stencil.data());
     flip_rows(stencil, w, h, mask, [](std::uint8_t c) -> std::uint8_t { return c != 0; });
   }
+  const FramePlan& plan = in_->plan;
+  if (!plan.reach[l].limited) return;
+  if (!depth_read_) {  // the layer's depths, once for all its lights
+    std::vector<float>& depth = read_depth_;
+    depth.resize(pixels);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t.scene.get());
+    glReadnPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT,
+                  static_cast<GLsizei>(pixels * sizeof(float)), depth.data());
+    flip_rows(depth, w, h, layer_depth_, [](float z) { return z; });
+    depth_read_ = true;
+  }
+  mark_beyond_reach(mask, layer_depth_, plan.inv_view_proj, plan.lights[l],
+                    in_->scene.lights[l].range, plan.reach[l], w, h);
 }
 
 void GlBackend::read_light_map(std::size_t l, SurfaceLayer& layer) {
@@ -1213,7 +1238,10 @@ void GlBackend::light_pass(std::size_t l, Layer layer) {
   glUniform1i(glsl::kLightMap, plan.has_glass());
   glUniform1f(glsl::kSpecular, shading::kSpecular);
   glUniform1f(glsl::kShininess, shading::kShininess);
-  draw_surfaces(drawn_[static_cast<int>(layer)], [&](std::size_t o) {
+  const shading::Falloff falloff = shading::falloff_of(light.range, light.limited());
+  glUniform2f(glsl::kFalloff, falloff.inv_range2, falloff.inverse_square);
+  scissor(l);
+  auto lit = [&](std::size_t o) {
     const Material& material = scene.objects[o].material;
     const glm::mat4& model = plan.objects[o].model;
     const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model))));
@@ -1225,7 +1253,22 @@ void GlBackend::light_pass(std::size_t l, Layer layer) {
     glUniform3fv(glsl::kRadiance, 1, glm::value_ptr(reflected));
     glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame_meshes_[o]->normals.get());
-  });
+  };
+  // The objects that receive shadows by the counts; then those that do not, lit whatever the
+  // counts say (SceneObject::receives_shadows).
+  const std::vector<std::uint32_t>& drawn = drawn_[static_cast<int>(layer)];
+  receivers_.clear();
+  non_receivers_.clear();
+  for (const std::uint32_t o : drawn)
+    (plan.objects[o].receives ? receivers_ : non_receivers_).push_back(o);
+  draw_surfaces(receivers_, lit);
+  if (!non_receivers_.empty()) {
+    glDisable(GL_STENCIL_TEST);
+    glUniform1i(glsl::kCountTexture, 0);
+    glUniform1i(glsl::kLightMap, 0);
+    draw_surfaces(non_receivers_, lit);
+  }
+  glDisable(GL_SCISSOR_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_STENCIL_TEST);
   glDepthFunc(GL_GREATER);

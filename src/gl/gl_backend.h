@@ -129,6 +129,7 @@ class GlBackend final : public FrameBackend {
   void measure_fill(bool zpass, const std::function<void()>& draw_all);
   // With the strips' programs, their viewport uniform.
   void set_viewport_uniform(bool strips);
+  void scissor(std::size_t light);  // enables the scissor test on the light's reach
   MeshBuffers& mesh_buffers(const SceneObject& object);
 
   std::optional<Context> context_;  // first member: destroyed last
@@ -171,9 +172,13 @@ class GlBackend final : public FrameBackend {
   bool mask_additive_ = false;   // the light's mask counts into the R32F target, not the stencil
   bool into_light_map_ = false;  // count_volume adds into the light map
   Layer layer_ = Layer::opaque;  // of the depth pass begun
+  // The depth pass's depths read back, rows from the top (for the lights' ranges), since it began.
+  bool depth_read_ = false;
+  std::vector<float> read_depth_, layer_depth_;
   // Per layer, the objects its depth pass drew (what its colour and lit passes draw); and every
   // transparent object (what is seen through).
   std::vector<std::uint32_t> drawn_[2], transparent_;
+  std::vector<std::uint32_t> receivers_, non_receivers_;  // of a lit pass's layer
   // Read-back scratch, kept between frames.
   std::vector<std::uint32_t> read_ids_, read_rows_;
   std::vector<float> read_counts_;

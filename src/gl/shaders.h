@@ -21,7 +21,7 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kCountTexture = 10, kFirstId = 11, kAmbient = 12, kSpecular = 13,
                      kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
                      kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
-                     kStripAcross = 22, kStripBounds = 23, kViewport = 24;
+                     kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25;
 
 // Which caps the volume geometry shader emits (uniform kCaps).
 inline constexpr int kCapsNone = 0;   // z-pass of an opaque caster: sides only
@@ -150,6 +150,7 @@ layout(location = 10) uniform bool count_texture;
 layout(location = 13) uniform float specular;
 layout(location = 14) uniform float shininess;
 layout(location = 20) uniform bool light_map;
+layout(location = 25) uniform vec2 falloff;  // render/shading.h: 1 / range^2, inverse square
 layout(binding = 0) uniform sampler2D counts;
 layout(binding = 1) uniform sampler2D log_light;
 layout(location = 11) uniform uint first_id;
@@ -165,11 +166,16 @@ void main() {
   vec3 eye_position = surface.eye_position;
   vec3 to_eye = normalize(-eye_position);  // the eye is the origin
   if (dot(n, to_eye) < 0.0) n = -n;         // two-sided: light the side we see
-  vec3 to_light = normalize(light.w != 0.0 ? light.xyz / light.w - eye_position : light.xyz);
+  vec3 towards = light.w != 0.0 ? light.xyz / light.w - eye_position : light.xyz;
+  float d2 = dot(towards, towards);
+  float x = d2 * falloff.x;
+  float window = x * x < 1.0 ? 1.0 - x * x : 0.0;
+  float reaching = window * window / (1.0 + d2 * falloff.y);
+  vec3 to_light = normalize(towards);
   float lambert = dot(n, to_light);
-  if (lambert <= 0.0) discard;
+  if (lambert <= 0.0 || reaching <= 0.0) discard;
   float spec = pow(max(0.0, dot(n, normalize(to_light + to_eye))), shininess);
-  color = vec4(radiance * arriving * (albedo * lambert + vec3(specular * spec)), 0.0);
+  color = vec4(reaching * radiance * arriving * (albedo * lambert + vec3(specular * spec)), 0.0);
 }
 )";
 

@@ -329,9 +329,14 @@ template <class TileTest, class Row>
 void raster(const Target& target, const Setup& s, int band, Counters& counters, TileWork* work,
             const StripInPixels& strip, TileTest&& tile_test, Row&& row) {
   const int y0 = band * kTileSize, y1 = std::min(target.height, y0 + kTileSize) - 1;
+  const PixelRect& scissor = target.scissor;
+  if (scissor.empty() || y1 < scissor.y0 || y0 >= scissor.y1) return;
   SlabExtent extent;
   if (!slab_extent<false>(s, y0, y1, target.width, extent)) return;
-  const int px0 = extent.px0, px1 = extent.px1;
+  // The tiles the scissor meets, whole.
+  const int px0 = std::max(extent.px0, scissor.x0 / kTileSize * kTileSize);
+  const int px1 = std::min(extent.px1, (scissor.x1 - 1) / kTileSize * kTileSize + kTileSize - 1);
+  if (px0 > px1) return;
   const Floats ds_lane = static_cast<float>(strip.ds_dx) * kLaneOffset;
   const float zlo_triangle = std::min({s.v[0].z, s.v[1].z, s.v[2].z}) - kDepthSlack;
   const float zhi_triangle = std::max({s.v[0].z, s.v[1].z, s.v[2].z}) + kDepthSlack;
@@ -487,6 +492,7 @@ Target::Target(int w, int h)
   blocks_y = (tiles_y + kBlockTiles - 1) / kBlockTiles;
   block_depth.resize(static_cast<std::size_t>(blocks_x) * blocks_y);
   block_row_depth.resize(static_cast<std::size_t>(blocks_y));
+  scissor = {0, 0, w, h};
   assert(w > 0 && h > 0 && w <= kMaxViewport && h <= kMaxViewport);
 }
 

@@ -68,6 +68,16 @@ struct TileWork {
   std::uint32_t pixels_updated = 0;
 };
 
+// A rectangle of pixels, [x0, x1) x [y0, y1), row 0 at the top.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  std::uint64_t area() const {
+    return empty() ? 0 : std::uint64_t(x1 - x0) * std::uint64_t(y1 - y0);
+  }
+  bool operator==(const PixelRect&) const = default;
+};
+
 // The buffers of one frame. Row-major, row 0 at the top.
 struct Target {
   static constexpr std::uint32_t kNoId = 0xffffffffu;
@@ -83,6 +93,9 @@ struct Target {
   // Per tile, row-major: what draw_counts did there, added up while the vector holds one entry
   // per tile (the caller sizes and clears it); empty, nothing is recorded.
   std::vector<TileWork> tile_work;
+  // The draws' scissor (for a light's count passes, its reach: accel/light_reach.h): they leave
+  // alone every tile wholly outside it and draw the rest whole. The whole image on a new target.
+  PixelRect scissor;
 
   Target();
   Target(int w, int h);

@@ -313,6 +313,7 @@ void CcShadowVolumes::cull_light(const Scene& scene, const RenderOptions& option
   const std::size_t leaves = leaf_caster_.size();
   leaf_kept_.assign(leaves, 0);
   for (std::size_t o = 0; o < objects; ++o) {
+    if (plan.volume(l, o).culled) continue;  // casts nothing of this light: none of it is kept
     const Leaves& range = leaves_[o];
     int kept = 0, unseen = 0;
     for (std::size_t k = range.first; k < range.first + range.count; ++k) {

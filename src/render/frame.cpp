@@ -150,14 +150,15 @@ FrameStats& FrameStats::operator+=(const FrameStats& other) {
   for (std::uint64_t S::*n :
        {&S::cull_queries, &S::volume_segments, &S::slice_queries, &S::clamp_pairs, &S::clamp_swaps,
         &S::intervals_merged_by_cost, &S::fill, &S::stencil_writes, &S::nodes_visited, &S::queries,
-        &S::queries_waited})
+        &S::queries_waited, &S::scissor_pixels_saved})
     this->*n += other.*n;
   for (std::size_t S::*n : {&S::triangles, &S::volume_primitives}) this->*n += other.*n;
-  for (int S::*n : {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::parts_zpass,
-                    &S::volumes_built, &S::volumes_reused, &S::casters_culled_in_shadow,
-                    &S::casters_culled_unseen, &S::light_views, &S::sub_objects_culled,
-                    &S::volumes_clamped, &S::volumes_clamped_away, &S::bvh_rebuilt,
-                    &S::objects_culled, &S::volumes_culled, &S::objects_drawn, &S::volumes_drawn})
+  for (int S::*n :
+       {&S::objects_zpass, &S::objects_zfail, &S::objects_split, &S::parts_zpass, &S::volumes_built,
+        &S::volumes_reused, &S::casters_culled_in_shadow, &S::casters_culled_unseen,
+        &S::light_views, &S::sub_objects_culled, &S::volumes_clamped, &S::volumes_clamped_away,
+        &S::bvh_rebuilt, &S::objects_culled, &S::volumes_culled, &S::objects_drawn,
+        &S::volumes_drawn, &S::volumes_out_of_range})
     this->*n += other.*n;
   for (raster::Counters S::*c : {&S::depth, &S::counts, &S::split_sampling}) this->*c += other.*c;
   for (std::vector<int> S::*per_object : {&S::zfail_lights, &S::culled_lights}) {

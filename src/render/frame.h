@@ -162,10 +162,10 @@ struct FrameStats {
   // Measuring for the stats what is not the frame's work (RenderOptions::count_fill's passes,
   // tile work shared out by object), taken off the stage it happened in.
   double ms_measuring = 0;
-  std::size_t triangles = 0;                  // scene triangles drawn in the depth pass
-  std::size_t volume_primitives = 0;          // over all lights
-  int objects_zpass = 0, objects_zfail = 0;   // over all lights
-  int objects_split = 0;                      // over all lights: drawn by a split plane
+  std::size_t triangles = 0;                 // scene triangles drawn in the depth pass
+  std::size_t volume_primitives = 0;         // over all lights
+  int objects_zpass = 0, objects_zfail = 0;  // over all lights
+  int objects_split = 0;                     // over all lights: drawn by a split plane
   // Over all lights: parts of z-fail objects counted by z-pass (VolumePlan::part_zfail).
   int parts_zpass = 0;
   std::vector<int> zfail_lights;              // per object: lights it was drawn by z-fail for
@@ -189,6 +189,11 @@ struct FrameStats {
   int objects_culled = 0, volumes_culled = 0;
   // Objects drawn in the opaque depth pass, and volumes counted (over all lights).
   int objects_drawn = 0, volumes_drawn = 0;
+  // Light ranges (SceneLight::range), over all lights: volumes of casters wholly beyond the range
+  // (not built, not counted), and the pixels outside the lights' scissor rectangles, which their
+  // count and lit passes leave alone.
+  int volumes_out_of_range = 0;
+  std::uint64_t scissor_pixels_saved = 0;
   // Sub-objects (CC §3, §3.3), over all lights: culled apart from the rest of their object.
   int sub_objects_culled = 0;
   // Clamping (RenderOptions::clamp), over all lights: the time it took (the light views' depths
@@ -222,8 +227,9 @@ struct FrameStats {
 struct SurfaceLayer {
   std::vector<std::int32_t> object;  // per pixel: index into scene.objects, -1 for none
   std::vector<std::uint32_t> face;   // per pixel: face of that object
-  // Per light, per pixel: the opaque casters' count != 0 (transparent casters never shadow
-  // fully; they are in `transmitted`).
+  // Per light, per pixel: 1 where the light does not arrive: the opaque casters' count != 0
+  // (transparent casters never shadow fully; they are in `transmitted`), or the surface lies
+  // beyond the light's range (SceneLight::range). 0 on objects that receive no shadows.
   std::vector<std::vector<std::uint8_t>> shadowed;
   // Scenes with transparent casters only, else empty: per light, per pixel, the fraction of the
   // light (linear RGB, per channel) that reaches the surface, the product of the transmittances

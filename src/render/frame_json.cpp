@@ -39,6 +39,8 @@ nlohmann::json cc_json(const FrameStats& s, int per, bool fill) {
     out["fill"] = each(static_cast<double>(s.fill));
     out["stencil_writes"] = each(static_cast<double>(s.stencil_writes));
   }
+  out["volumes_out_of_range"] = each(s.volumes_out_of_range);
+  out["scissor_pixels_saved"] = each(static_cast<double>(s.scissor_pixels_saved));
   if (s.volume_costs.measured()) {
     out["v_ms_per_vertex"] = s.volume_costs.ms_per_vertex;
     out["r_ms_per_pixel"] = s.volume_costs.ms_per_pixel;

@@ -121,8 +121,14 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
   plan.objects.resize(objects);
   plan.id_count = 0;
   plan.lights.resize(lights);
-  for (std::size_t l = 0; l < lights; ++l)
+  plan.reach.resize(lights);
+  for (std::size_t l = 0; l < lights; ++l) {
     plan.lights[l] = eye_relative(scene.lights[l].position, scene.camera.position);
+    plan.reach[l] = light_reach(plan.lights[l], scene.lights[l].range, view, proj,
+                                scene.camera.near, options.width, options.height);
+    stats.scissor_pixels_saved +=
+        static_cast<std::uint64_t>(options.width) * options.height - plan.reach[l].scissor.area();
+  }
 
   // Each object's transform, ids and bounding box (eye-relative), and the scene's reach: its
   // box and the near plane's, which a bounded volume's far plane must lie beyond.
@@ -131,6 +137,7 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
   for (const glm::vec3& c : near_rect)
     reach_lo = glm::min(reach_lo, c), reach_hi = glm::max(reach_hi, c);
   std::size_t glass_groups = 0;
+  plan.any_non_receiver = false;
   for (std::size_t o = 0; o < objects; ++o) {
     const SceneObject& object = scene.objects[o];
     ObjectPlan& op = plan.objects[o];
@@ -148,6 +155,8 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
     reach_hi = glm::max(reach_hi, op.hi);
     op.back_faces_hidden = object.topology->report.parts_wound_outwards > 0 &&
                            box_beyond_near_plane(op.lo, op.hi, view, scene.camera.near);
+    op.receives = object.receives_shadows;
+    plan.any_non_receiver = plan.any_non_receiver || !op.receives;
     // Transparent casters, grouped by material in order of first use.
     op.glass_group = -1;
     if (!object.material.transparent()) continue;
@@ -215,7 +224,13 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
       v.rule = zfail ? VolumeRule::zfail : v.split.empty() ? VolumeRule::zpass : VolumeRule::split;
       v.counts_caps = v.rule != VolumeRule::zpass;
       v.light_caps_everywhere = op.glass_group >= 0;
-      v.culled = false;  // until the culling and clamping, after the depth pass
+      // Until the culling and clamping, after the depth pass, but for casters that cast nothing
+      // of this light.
+      const bool out_of_range =
+          scene.lights[l].limited() &&
+          !box_meets_sphere(op.lo, op.hi, glm::vec3(light), scene.lights[l].range);
+      stats.volumes_out_of_range += out_of_range && object.casts_shadows;
+      v.culled = !object.casts_shadows || out_of_range;
       v.clamp.face_leaf = v.clamp.vertex_leaf_offsets = v.clamp.vertex_leaves = {};
       v.clamp.offsets.clear();
       v.clamp.intervals.clear();
@@ -245,12 +260,16 @@ void plan_depth_bounds(FramePlan& plan, std::size_t light) {
     const ObjectPlan& op = plan.objects[o];
     if (v.culled) continue;
     // Recomputed only where what it depends on changed since it was last computed.
-    const DepthBoundsInputs inputs{op.lo, op.hi, plan.lights[light], v.far_plane, plan.view_proj};
+    const raster::DepthBounds reach = plan.reach[light].depth;
+    const DepthBoundsInputs inputs{op.lo,       op.hi,          plan.lights[light],
+                                   v.far_plane, plan.view_proj, reach};
     if (v.depth_bounds_of == inputs) continue;
     v.depth_bounds = op.lo.x <= op.hi.x
                          ? box_volume_depth_bounds(op.lo, op.hi, plan.lights[light], v.far_plane,
                                                    plan.view_proj, near_rect)
                          : raster::DepthBounds{};
+    v.depth_bounds.zmin = std::max(v.depth_bounds.zmin, reach.zmin);
+    v.depth_bounds.zmax = std::min(v.depth_bounds.zmax, reach.zmax);
     v.depth_bounds_of = inputs;
   }
 }

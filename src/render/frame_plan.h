@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "accel/light_reach.h"
 #include "core/volume.h"
 #include "raster/raster.h"
 #include "render/frame.h"
@@ -54,7 +55,11 @@ struct DepthBoundsInputs {
   glm::vec3 lo{0.0f}, hi{0.0f};  // the object's bounding box
   glm::vec4 light{0.0f}, far_plane{0.0f};
   glm::mat4 view_proj{1.0f};
-  bool operator==(const DepthBoundsInputs&) const = default;
+  raster::DepthBounds reach;  // the light's (LightReach::depth)
+  bool operator==(const DepthBoundsInputs& o) const {
+    return lo == o.lo && hi == o.hi && light == o.light && far_plane == o.far_plane &&
+           view_proj == o.view_proj && reach.zmin == o.reach.zmin && reach.zmax == o.reach.zmax;
+  }
 };
 
 // One object's volume for one light.
@@ -80,14 +85,15 @@ struct VolumePlan {
   // Laine 2005 §7's depth bounds (set by plan_depth_bounds, for volumes not culled): the window
   // depths of the shadow volume of the object's bounding box (ended on the same far plane) where it
   // meets the view frustum. The software count passes skip every pixel whose stored depth lies
-  // outside them. Empty (zmin > zmax) where the box's volume is out of view.
+  // outside them. Empty (zmin > zmax) where the box's volume is out of view. Within the light's
+  // reach (FramePlan::reach).
   raster::DepthBounds depth_bounds;
   // What depth_bounds was computed from: a plan reused for the next frame recomputes them only
   // where these changed (each takes a shadow volume of the box).
   std::optional<DepthBoundsInputs> depth_bounds_of;
-  // Culled (RenderOptions::cull, or no strip of discrete clamping holds it; render/
-  // cc_shadow_volumes.h): no pixel's count changes without it, so it is neither built nor
-  // counted.
+  // Culled (the object casts no shadows, its box lies beyond the light's range, RenderOptions::
+  // cull, or no strip of discrete clamping holds it; render/cc_shadow_volumes.h): no pixel's
+  // count changes without it, so it is neither built nor counted.
   bool culled = false;
   // CC shadow volumes' sub-objects and continuous clamping (render/cc_shadow_volumes.h): with
   // leaves, the volume is built clamped (core/volume.h), in the object's space, and its dark caps,
@@ -125,6 +131,7 @@ struct ObjectPlan {
   // The depth pass gives face f the id first_id + f.
   std::uint32_t first_id = 0;
   int glass_group = -1;  // index into FramePlan::glass, or -1 for an opaque object
+  bool receives = true;  // SceneObject::receives_shadows: its pixels' counts are cleared
   // Its bounding box, eye-relative (lo > hi for an object without vertices).
   glm::vec3 lo{0.0f}, hi{0.0f};
   // The back faces of its parts wound outwards (Topology::part_wound_outwards) are never the
@@ -147,7 +154,11 @@ struct FramePlan {
   glm::mat4 view_proj{1.0f};  // of eye-relative space
   glm::mat4 inv_view_proj{1.0f};
   std::vector<ObjectPlan> objects;
-  std::vector<glm::vec4> lights;    // per light: its position, eye-relative
+  std::vector<glm::vec4> lights;  // per light: its position, eye-relative
+  // Per light: the scissor and depth bounds of its range (the whole image, all depths, for a
+  // light without one); its count and lit passes stay within them.
+  std::vector<LightReach> reach;
+  bool any_non_receiver = false;    // some object does not receive shadows
   std::vector<GlassGroup> glass;    // in order of first use; empty without transparent casters
   std::uint32_t id_count = 0;       // the depth pass's ids are [0, id_count)
   std::vector<VolumePlan> volumes;  // [light * objects + object]
@@ -170,15 +181,17 @@ struct FramePlan {
 // parts, only for the parts whose own spheres may (VolumePlan::part_zfail): one mesh of a whole
 // city is not forced to z-fail. `spsv` gives every object a split
 // plane, and `zp+db` draws by z-pass; both pre-fill where `auto` would take z-fail, and take
-// z-fail where the light lies in the near plane, which no pre-fill can see. Counts the objects of
-// each method into stats.
+// z-fail where the light lies in the near plane, which no pre-fill can see. A volume is culled
+// where its object casts no shadows or lies wholly beyond the light's range. Counts the objects
+// of each method, and the volumes out of range, into stats.
 void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& plan,
                 FrameStats& stats);
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);
 
 // Laine 2005 §7's depth bounds (VolumePlan::depth_bounds) of light l's volumes that are not
-// culled, each recomputed only where its box, light, far plane or view changed: after culling,
-// so that a large scene pays for the volumes it draws, not for every object.
+// culled, within the light's reach, each recomputed only where its box, light, far plane, view or
+// reach changed: after culling, so that a large scene pays for the volumes it draws, not for
+// every object.
 void plan_depth_bounds(FramePlan& plan, std::size_t light);
 
 // The generator that builds an object's volume: `requested`, except that `automatic` takes

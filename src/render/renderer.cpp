@@ -40,6 +40,19 @@ void size_frame(Frame& frame, std::size_t lights, std::size_t pixels, bool glass
                        [&] { size_layer(frame, lights, pixels, glass); });
 }
 
+// An object that does not receive shadows (SceneObject::receives_shadows) gets every light
+// that reaches it: its pixels' masks are cleared, and all the light arrives through the
+// transparent casters.
+void clear_non_receivers(const FramePlan& plan, std::size_t light, SurfaceLayer& layer) {
+  std::vector<std::uint8_t>& mask = layer.shadowed[light];
+  for (std::size_t p = 0; p < mask.size(); ++p) {
+    const std::int32_t o = layer.object[p];
+    if (o < 0 || plan.objects[static_cast<std::size_t>(o)].receives) continue;
+    mask[p] = 0;
+    if (!layer.transmitted.empty()) layer.transmitted[light][p] = glm::vec3(1.0f);
+  }
+}
+
 // Runs one step of the frame and adds its time into `into`, the backend's work included.
 template <class Step>
 void timed(FrameBackend& backend, double& into, Step&& step) {
@@ -181,6 +194,8 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     backend_->end_counts();
   });
   if (read_back) timed(*backend_, stats.ms_readback, [&] { backend_->read_mask(l, out); });
+  const bool clear = read_back && plan_.any_non_receiver;
+  if (clear && !plan_.has_glass()) clear_non_receivers(plan_, l, out);
   // The transparent casters' light intensity map (Kim et al. Eq. 3), a group of one material at
   // a time: each count adds the group's log transmittance.
   if (plan_.has_glass()) {
@@ -194,6 +209,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     });
     if (read_back) timed(*backend_, stats.ms_readback, [&] { backend_->read_light_map(l, out); });
   }
+  if (clear && plan_.has_glass()) clear_non_receivers(plan_, l, out);
   timed(*backend_, stats.ms_shade, [&] { backend_->light_pass(l, layer); });
 }
 

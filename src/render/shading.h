@@ -23,6 +23,25 @@ inline float specular_power(float cos_half) {
   for (int k = 0; k < 4; ++k) x *= x;
   return x;
 }
+// A point light with a range r (SceneLight::range) falls off as the inverse square of the
+// distance d, as 1 / (1 + d^2) in scene units (finite at the light), windowed by
+// max(0, 1 - (d / r)^4)^2 so that it ends exactly at r (Karis 2013, "Real Shading in Unreal
+// Engine 4"): nothing lies beyond the range for the shadows to miss. A light without a range
+// does not fall off. Per light, the two factors the falloff is made of:
+struct Falloff {
+  float inv_range2 = 0.0f;      // 1 / r^2; 0 without a range
+  float inverse_square = 0.0f;  // 1 with a range, else 0
+};
+inline Falloff falloff_of(float range, bool limited) {
+  return limited ? Falloff{1.0f / (range * range), 1.0f} : Falloff{};
+}
+// The falloff at squared distance d2.
+inline float falloff(float d2, const Falloff& f) {
+  const float x = d2 * f.inv_range2;
+  const float window = x * x < 1.0f ? 1.0f - x * x : 0.0f;
+  return window * window / (1.0f + d2 * f.inverse_square);
+}
+
 // The background at row y of h (row 0 at the top).
 glm::vec3 background(int y, int h);
 float to_srgb(float linear);

@@ -13,6 +13,7 @@
 #include "core/projection.h"
 #include "core/shapes.h"
 #include "scene/city.h"
+#include "scene/night_street.h"
 
 namespace shadowvol {
 
@@ -478,7 +479,8 @@ constexpr Builtin kBuiltins[] = {
     {"tree", tree_whole},
     {"tree-decomposed", tree_decomposed},
     {"city", [] { return make_city(kDefaultCityBuildings, CityView::street); }},
-    {"city-above", [] { return make_city(kDefaultCityBuildings, CityView::above); }}};
+    {"city-above", [] { return make_city(kDefaultCityBuildings, CityView::above); }},
+    {"night-street", [] { return make_night_street(kDefaultStreetLamps); }}};
 
 }  // namespace
 
@@ -508,12 +510,13 @@ std::vector<std::string_view> builtin_scene_names() {
 
 Expected<Scene> builtin_scene(std::string_view name) {
   if (is_city_name(name)) return city_by_name(name);
+  if (is_night_street_name(name)) return night_street_by_name(name);
   for (const Builtin& b : kBuiltins)
     if (b.name == name) return b.make();
   std::string known;
   for (const Builtin& b : kBuiltins) known += (known.empty() ? "" : ", ") + std::string(b.name);
   return make_error("unknown scene '" + std::string(name) + "': the built-in scenes are " + known +
-                    " (city:N and city-above:N: a city of N buildings)");
+                    " (city:N and city-above:N: a city of N buildings; night-street:N: N lamps)");
 }
 
 }  // namespace shadowvol

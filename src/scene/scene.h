@@ -5,6 +5,7 @@
 // lights are valid, see core/volume.h check_light). No rendering, no tracing.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -69,13 +70,26 @@ struct SceneObject {
   Material material;
   Animation animation;
   SplitPlaneChoice split_plane = SplitPlaneChoice::automatic;
+  // Who casts and who receives (Intel, "mainstream shadow volumes": only the geometry named as an
+  // occluder occludes). An object that does not cast has no volume; one that does not receive is
+  // lit by every light that reaches it, whatever lies between (it still casts, if it does).
+  bool casts_shadows = true;
+  bool receives_shadows = true;
 };
+
+// A point light's range: beyond it the light reaches nothing (render/shading.h's falloff is 0
+// there), so no object wholly outside its sphere casts or receives anything of it.
+inline constexpr float kUnlimitedRange = INFINITY;
 
 struct SceneLight {
   glm::vec4 position{0.0f, 10.0f, 0.0f, 1.0f};  // world, homogeneous: w = 1 point, 0 directional
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
   float orbit_degrees_per_frame = 0.0f;  // turns about the world's y axis, frame by frame
+  // Point lights only: the radius it reaches (kUnlimitedRange: everywhere, without falloff).
+  float range = kUnlimitedRange;
+
+  bool limited() const { return position.w != 0.0f && range < kUnlimitedRange; }
 };
 
 struct Camera {

@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
@@ -191,7 +192,7 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < root["lights"].size(); ++i) {
     const json& l = root["lights"][i];
     const std::string p = "scene.lights[" + std::to_string(i) + "]";
-    if (!r.keys(l, p, {"position", "direction", "color", "intensity", "orbit"}))
+    if (!r.keys(l, p, {"position", "direction", "color", "intensity", "orbit", "range"}))
       return make_error(r.error);
     SceneLight light;
     glm::vec3 v(0.0f);
@@ -213,9 +214,16 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
                     [&](const json& c, const std::string& q) {
                       return r.number(c, q, light.orbit_degrees_per_frame);
                     }) ||
-        !r.optional(l, p, "intensity", [&](const json& c, const std::string& q) {
-          return r.number(c, q, light.intensity) &&
-                 (light.intensity >= 0.0f ? true : r.fail(q, "must not be negative"));
+        !r.optional(l, p, "intensity",
+                    [&](const json& c, const std::string& q) {
+                      return r.number(c, q, light.intensity) &&
+                             (light.intensity >= 0.0f ? true : r.fail(q, "must not be negative"));
+                    }) ||
+        !r.optional(l, p, "range", [&](const json& c, const std::string& q) {
+          if (!point) return r.fail(q, "only a point light (position) has a range");
+          return r.number(c, q, light.range) &&
+                 (light.range > 0.0f ? true
+                                     : r.fail(q, "must be positive (leave it out for none)"));
         }))
       return make_error(r.error);
     scene.lights.push_back(light);
@@ -228,7 +236,7 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
     const std::string p = "scene.objects[" + std::to_string(i) + "]";
     if (!r.keys(o, p,
                 {"name", "mesh", "shape", "transform", "color", "opacity", "animation",
-                 "split_plane", "decompose"}))
+                 "split_plane", "decompose", "casts_shadows", "receives_shadows"}))
       return make_error(r.error);
     if (o.contains("mesh") == o.contains("shape"))
       return make_error(name + ": " + p +
@@ -296,12 +304,14 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
       if (!choice) return make_error(name + ": " + p + ".split_plane: " + choice.error().message);
       split_plane = *choice;
     }
-    bool decompose = false;
-    if (o.contains("decompose")) {
-      if (!o["decompose"].is_boolean())
-        return make_error(name + ": " + p + ".decompose: expected true or false");
-      decompose = o["decompose"].get<bool>();
-    }
+    bool decompose = false, casts = true, receives = true;
+    for (auto [key, flag] : {std::pair{"decompose", &decompose}, std::pair{"casts_shadows", &casts},
+                             std::pair{"receives_shadows", &receives}})
+      if (o.contains(key)) {
+        if (!o[key].is_boolean())
+          return make_error(name + ": " + p + "." + key + ": expected true or false");
+        *flag = o[key].get<bool>();
+      }
     // Decomposed (Laine 2005 §6): each connected part an object of its own, with its own split
     // plane; vertices at equal positions join, since mesh files often repeat them per face.
     std::vector<Mesh> parts;
@@ -315,6 +325,8 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
       scene.objects.push_back(make_object(part_name, std::move(parts[k]), transform, material));
       scene.objects.back().animation = animation;
       scene.objects.back().split_plane = split_plane;
+      scene.objects.back().casts_shadows = casts;
+      scene.objects.back().receives_shadows = receives;
     }
   }
   return scene;

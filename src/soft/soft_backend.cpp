@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "accel/light_reach.h"
 #include "accel/near_plane.h"
 #include "render/shading.h"
 #include "render/volume_costs.h"
@@ -219,9 +220,14 @@ void SoftBackend::read_ids(Layer, SurfaceLayer& out) {
       });
 }
 
-void SoftBackend::begin_light_map(std::size_t) {
+void SoftBackend::begin_mask(std::size_t l) { target_.scissor = in_->plan.reach[l].scissor; }
+
+void SoftBackend::begin_light_map(std::size_t l) {
   log_light_.assign(target_.count.size(), glm::vec3(0.0f));
+  target_.scissor = in_->plan.reach[l].scissor;
 }
+
+void SoftBackend::end_counts() { target_.scissor = {0, 0, target_.width, target_.height}; }
 
 void SoftBackend::end_group(std::size_t g) {
   target_.take_counts_into(log_light_, in_->plan.glass[g].log_transmittance);
@@ -229,6 +235,9 @@ void SoftBackend::end_group(std::size_t g) {
 
 void SoftBackend::read_mask(std::size_t l, SurfaceLayer& layer) {
   target_.take_nonzero_counts(layer.shadowed[l]);
+  const FramePlan& plan = in_->plan;
+  mark_beyond_reach(layer.shadowed[l], target_.depth, plan.inv_view_proj, plan.lights[l],
+                    in_->scene.lights[l].range, plan.reach[l], target_.width, target_.height);
 }
 
 void SoftBackend::read_light_map(std::size_t l, SurfaceLayer& layer) {
@@ -551,11 +560,12 @@ struct RowPoints {
 // where the light reaches the surface, on the side the eye sees. Arrays of the row's pixels,
 // distinct (restrict: GCC honours it on parameters), so that the loop vectorizes across pixels.
 template <bool kThroughGlass>
-void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, const float* __restrict z,
-               const float* __restrict nx, const float* __restrict ny, const float* __restrict nz,
-               const float* __restrict ar, const float* __restrict ag, const float* __restrict ab,
-               const std::uint8_t* __restrict shadowed, const glm::vec3* __restrict arriving,
-               float* __restrict r, float* __restrict g, float* __restrict b) {
+void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, shading::Falloff falloff,
+               const float* __restrict z, const float* __restrict nx, const float* __restrict ny,
+               const float* __restrict nz, const float* __restrict ar, const float* __restrict ag,
+               const float* __restrict ab, const std::uint8_t* __restrict shadowed,
+               const glm::vec3* __restrict arriving, float* __restrict r, float* __restrict g,
+               float* __restrict b) {
   for (int x = 0; x < n; ++x) {
     const float fx = float(x);
     // The point (float: it only aims the light) and the unit vector to the eye, the origin.
@@ -569,7 +579,9 @@ void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, const 
     const float sx = nx[x] * side, sy = ny[x] * side, sz = nz[x] * side;
     float lx = light_at.x - px * light_at.w, ly = light_at.y - py * light_at.w,
           lz = light_at.z - pz * light_at.w;
-    const float inv = 1.0f / std::sqrt(lx * lx + ly * ly + lz * lz);
+    const float d2 = lx * lx + ly * ly + lz * lz;
+    const float reaching = shading::falloff(d2, falloff);
+    const float inv = 1.0f / std::sqrt(d2);
     lx *= inv, ly *= inv, lz *= inv;
     const float lambert = sx * lx + sy * ly + sz * lz;
     const float hx = lx + ex, hy = ly + ey, hz = lz + ez;
@@ -577,8 +589,9 @@ void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, const 
     const float spec =
         shading::kSpecular * shading::specular_power(cos_half > 0.0f ? cos_half : 0.0f);
     const bool lit = (shadowed[x] == 0) & (lambert > 0.0f);
-    float dr = light.x * (ar[x] * lambert + spec), dg = light.y * (ag[x] * lambert + spec),
-          db = light.z * (ab[x] * lambert + spec);
+    float dr = reaching * light.x * (ar[x] * lambert + spec),
+          dg = reaching * light.y * (ag[x] * lambert + spec),
+          db = reaching * light.z * (ab[x] * lambert + spec);
     if constexpr (kThroughGlass) dr *= arriving[x].x, dg *= arriving[x].y, db *= arriving[x].z;
     r[x] += lit ? dr : 0.0f, g[x] += lit ? dg : 0.0f, b[x] += lit ? db : 0.0f;
   }
@@ -611,13 +624,22 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
   const RowPoints points{inv_vp[0] * (1.0f / float(w) - 1.0f) + inv_vp[1] * ndc_y + inv_vp[3],
                          inv_vp[0] * (2.0f / float(w)), inv_vp[2]};
   for (std::size_t l = 0; l < lights_at.size(); ++l) {
-    const glm::vec3 light = scene.lights[l].color * scene.lights[l].intensity;
-    const glm::vec3* arriving = layer.transmitted.empty() ? nullptr : &layer.transmitted[l][row];
-    (arriving ? add_light<true> : add_light<false>)(w, points, lights_at[l], light, out.z.data(),
-                                                    out.nx.data(), out.ny.data(), out.nz.data(),
-                                                    out.ar.data(), out.ag.data(), out.ab.data(),
-                                                    &layer.shadowed[l][row], arriving, out.r.data(),
-                                                    out.g.data(), out.b.data());
+    // Only the pixels of the light's scissor: none beyond it is within the range.
+    const raster::PixelRect& rect = in_->plan.reach[l].scissor;
+    if (y < rect.y0 || y >= rect.y1 || rect.empty()) continue;
+    const SceneLight& scene_light = scene.lights[l];
+    const glm::vec3 light = scene_light.color * scene_light.intensity;
+    const shading::Falloff falloff = shading::falloff_of(scene_light.range, scene_light.limited());
+    const std::size_t x0 = static_cast<std::size_t>(rect.x0), at = row + x0;
+    RowPoints from_x0 = points;
+    from_x0.base += points.step * float(rect.x0);
+    const glm::vec3* arriving = layer.transmitted.empty() ? nullptr : &layer.transmitted[l][at];
+    (arriving ? add_light<true>
+              : add_light<false>)(rect.x1 - rect.x0, from_x0, lights_at[l], light, falloff,
+                                  out.z.data() + x0, out.nx.data() + x0, out.ny.data() + x0,
+                                  out.nz.data() + x0, out.ar.data() + x0, out.ag.data() + x0,
+                                  out.ab.data() + x0, &layer.shadowed[l][at], arriving,
+                                  out.r.data() + x0, out.g.data() + x0, out.b.data() + x0);
   }
 }
 

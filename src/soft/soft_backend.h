@@ -49,7 +49,8 @@ class SoftBackend final : public FrameBackend {
   bool query_visible(QueryId query) override { return answers_[query] != 0; }
   void read_ids(Layer layer, SurfaceLayer& out) override;
   void volumes_ready(std::size_t, const std::vector<std::uint8_t>&) override {}
-  void begin_mask(std::size_t) override {}  // counts are zero after each read
+  // Counts are zero after each read; a light's passes keep to its scissor (FramePlan::reach).
+  void begin_mask(std::size_t light) override;
   void begin_light_map(std::size_t light) override;
   void count_volume(std::size_t light, std::size_t object) override;
   // Volumes counted by z-pass or z-fail over the whole image go into one draw per rule (each
@@ -59,6 +60,7 @@ class SoftBackend final : public FrameBackend {
   void end_group(std::size_t group) override;
   void read_mask(std::size_t light, SurfaceLayer& layer) override;
   void read_light_map(std::size_t light, SurfaceLayer& layer) override;
+  void end_counts() override;
   void light_pass(std::size_t, Layer) override {}  // in shade
   void see_through() override;
   void shade() override;

@@ -34,7 +34,10 @@ std::string device_error(RTCDevice device) {
 // one Embree geometry per object (geometry id = object index).
 Expected<EmbreeScene> build(RTCDevice device, const Scene& scene) {
   EmbreeScene es(rtcNewScene(device));
-  rtcSetSceneFlags(es.get(), has_transparent_casters(scene)
+  const bool filtered = has_transparent_casters(scene) ||
+                        std::any_of(scene.objects.begin(), scene.objects.end(),
+                                    [](const SceneObject& o) { return !o.casts_shadows; });
+  rtcSetSceneFlags(es.get(), filtered
                                  ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION
                                  : RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(es.get(), RTC_BUILD_QUALITY_HIGH);
@@ -73,6 +76,9 @@ Expected<EmbreeScene> build(RTCDevice device, const Scene& scene) {
 struct GlassContext {
   RTCIntersectContext context;
   const std::vector<std::uint8_t>* transparent;  // per geometry (object)
+  // Per geometry, whether the ray passes through it unseen (a shadow ray, objects that cast no
+  // shadows); or null.
+  const std::vector<std::uint8_t>* ignored = nullptr;
   struct Hit {
     unsigned geometry, primitive;
     float t;
@@ -87,13 +93,18 @@ struct GlassContext {
   std::vector<Hit> hits;
 };
 
-// Records every candidate hit on a transparent geometry and rejects it, so that the ray goes on;
-// hits on opaque geometry are kept as Embree found them.
+// Rejects every candidate hit on an ignored geometry; records every one on a transparent
+// geometry and rejects it, so that the ray goes on; hits on opaque geometry are kept as Embree
+// found them.
 void see_through_glass(const RTCFilterFunctionNArguments* args) {
   auto* glass = reinterpret_cast<GlassContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
     const unsigned geometry = RTCHitN_geomID(args->hit, args->N, i);
+    if (glass->ignored != nullptr && (*glass->ignored)[geometry]) {
+      args->valid[i] = 0;
+      continue;
+    }
     if (!(*glass->transparent)[geometry]) continue;
     glass->hits.push_back(
         {geometry,
@@ -114,9 +125,12 @@ struct ReferenceTracer::State {
   glm::dmat4 inv_view_proj{1.0};
   float near = 0.0f;
   std::vector<glm::dvec4> lights;         // eye-relative
+  std::vector<double> ranges;             // per light: SceneLight::range (infinite: none)
   bool glass = false;                     // any transparent caster
+  bool filtered = false;                  // a filter is needed: glass, or objects not casting
   std::vector<std::uint8_t> transparent;  // per object
-  std::vector<glm::dvec3> transmittance;  // per object
+  std::vector<std::uint8_t> not_casting, not_receiving;  // per object
+  std::vector<glm::dvec3> transmittance;                 // per object
 };
 
 ReferenceTracer::ReferenceTracer(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -136,10 +150,15 @@ Expected<std::shared_ptr<const ReferenceTracer>> ReferenceTracer::create(const S
       glm::inverse(glm::dmat4(scene.camera.projection(float(width) / float(height))) *
                    glm::dmat4(scene.camera.view_from_eye()));
   state->near = scene.camera.near;
-  for (const SceneLight& light : scene.lights)
+  for (const SceneLight& light : scene.lights) {
     state->lights.emplace_back(eye_relative(light.position, scene.camera.position));
+    state->ranges.push_back(light.limited() ? double(light.range) : INFINITY);
+  }
   state->glass = has_transparent_casters(scene);
   for (const SceneObject& object : scene.objects) {
+    state->not_casting.push_back(!object.casts_shadows);
+    state->not_receiving.push_back(!object.receives_shadows);
+    state->filtered = state->filtered || !object.casts_shadows;
     state->transparent.push_back(object.material.transparent());
     state->transmittance.emplace_back(object.material.transmittance());
   }
@@ -159,7 +178,7 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
       s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0, 1.0 - y / s.height * 2.0, 1.0, 1.0);
   const glm::dvec3 dir = glm::normalize(glm::dvec3(on_near) / on_near.w);
   if (!std::isfinite(dir.x) || !std::isfinite(dir.y) || !std::isfinite(dir.z)) return out;
-  GlassContext context{{}, &s.transparent, {}};
+  GlassContext context{{}, &s.transparent, nullptr, {}};
   rtcInitIntersectContext(&context.context);
   if (s.glass) context.context.filter = see_through_glass;
   RTCRayHit hit{};
@@ -172,7 +191,10 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
   // Light at the point `pos` of a surface with normal n (turned towards the eye), per light:
   // whether the surface faces it, whether an opaque surface blocks it, and (with transparent
   // casters) the product of the transmittances of the transparent surfaces on the way.
+  // A surface of an object that receives no shadows gets every light that reaches it; one beyond
+  // a light's range gets none of it (not compared, as a surface facing away).
   auto light_surface = [&s](const glm::dvec3& pos, const glm::dvec3& n, ReferenceSurface& out) {
+    const bool receives = !s.not_receiving[static_cast<std::size_t>(out.object)];
     const std::size_t lights = s.lights.size();
     out.faces_light.assign(lights, 0);
     out.shadowed.assign(lights, 0);
@@ -185,7 +207,12 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
           light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
       const glm::dvec3 d = glm::normalize(to_light);
       if (glm::dot(n, d) <= 0.0) continue;  // faces away: not compared
+      if (std::isfinite(s.ranges[l]) && !(distance < s.ranges[l])) continue;  // beyond the range
       out.faces_light[l] = 1;
+      if (!receives) {
+        if (s.glass) out.transmitted[l] = glm::vec3(1.0f);
+        continue;
+      }
       // Start a hair off the surface, towards the light's side, to leave its own triangle.
       const double scale = std::max(1.0, glm::length(pos));
       const glm::dvec3 origin = pos + n * (1e-5 * scale);
@@ -196,9 +223,9 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
       shadow.tnear = 0.0f;
       shadow.tfar = std::isinf(distance) ? std::numeric_limits<float>::infinity() : float(distance);
       shadow.mask = 0xffffffffu;
-      GlassContext context{{}, &s.transparent, {}};
+      GlassContext context{{}, &s.transparent, &s.not_casting, {}};
       rtcInitIntersectContext(&context.context);
-      if (s.glass) context.context.filter = see_through_glass;
+      if (s.glass || s.filtered) context.context.filter = see_through_glass;
       rtcOccluded1(s.scene.get(), &context.context, &shadow);
       out.shadowed[l] = shadow.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
       if (!s.glass || out.shadowed[l]) continue;

@@ -655,3 +655,35 @@ TEST(DepthPass, OneDrawWithAnIdPerTriangleIsTheSameAsOneDrawPerObject) {
 
 }  // namespace
 }  // namespace shadowvol::raster
+
+namespace shadowvol::raster {
+namespace {
+
+// The scissor: tiles wholly outside it keep their counts; the tiles it meets are counted whole,
+// as without it.
+TEST(Raster, ScissorLeavesTilesOutsideItAlone) {
+  const int w = 64, h = 48;
+  std::vector<glm::vec4> tris;
+  add_ndc(tris, {-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f});
+  add_ndc(tris, {-1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f});
+  const std::vector<std::int32_t> whole = coverage(w, h, tris);
+  Target target(w, h);
+  target.scissor = {13, 9, 40, 30};
+  Counters counters;
+  draw_counts(target, tris, std::vector<std::int32_t>(tris.size() / 3, 1), CountRule::zpass,
+              counters);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * w + x;
+      const bool in_tiles = x >= 8 && x < 40 && y >= 8 && y < 32;  // the tiles it meets
+      EXPECT_EQ(target.count[p], in_tiles ? whole[p] : 0) << x << "," << y;
+    }
+  target.scissor = {};
+  std::fill(target.count.begin(), target.count.end(), 0);
+  draw_counts(target, tris, std::vector<std::int32_t>(tris.size() / 3, 1), CountRule::zpass,
+              counters);
+  EXPECT_EQ(std::count(target.count.begin(), target.count.end(), 0), w * h);  // empty: nothing
+}
+
+}  // namespace
+}  // namespace shadowvol::raster

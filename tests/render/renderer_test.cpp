@@ -445,5 +445,22 @@ TEST(Renderer, BatchedVolumesCountAsVolumeByVolume) {
   }
 }
 
+// A light's falloff (render/shading.h): the inverse square near the light, exactly 0 from the
+// range on, never rising with distance; none without a range.
+TEST(Shading, RangeFalloffEndsAtTheRange) {
+  const shading::Falloff f = shading::falloff_of(10.0f, true);
+  EXPECT_FLOAT_EQ(shading::falloff(0.0f, f), 1.0f);
+  EXPECT_NEAR(shading::falloff(4.0f, f), (1.0f - 0.0016f) * (1.0f - 0.0016f) / 5.0f, 1e-6f);
+  EXPECT_EQ(shading::falloff(100.0f, f), 0.0f);
+  EXPECT_EQ(shading::falloff(1e6f, f), 0.0f);
+  float last = 2.0f;
+  for (float d = 0.0f; d < 10.0f; d += 0.05f) {
+    const float v = shading::falloff(d * d, f);
+    EXPECT_LE(v, last);
+    last = v;
+  }
+  EXPECT_EQ(shading::falloff(1e6f, shading::falloff_of(10.0f, false)), 1.0f);
+}
+
 }  // namespace
 }  // namespace shadowvol

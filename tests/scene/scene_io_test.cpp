@@ -104,6 +104,25 @@ TEST(SceneFile, DecomposeMakesAnObjectPerConnectedPart) {
       << bad.error().message;
 }
 
+// Who casts and receives, and a point light's range (Intel's occluders; GPU Gems 3 §11.2.3).
+TEST(SceneFile, CasterFlagsAndLightRange) {
+  const auto path = write_temp("flags", R"({
+    "camera": {"position": [0, 2, 5], "target": [0, 0, 0]},
+    "lights": [{"position": [4, 5, 0], "range": 12.5}, {"position": [0, 5, 0]}],
+    "objects": [{"shape": "box", "casts_shadows": false},
+                {"shape": "ground", "receives_shadows": false}, {"shape": "torus"}]})");
+  auto scene = load_scene_file(path);
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_FALSE(scene->objects[0].casts_shadows);
+  EXPECT_TRUE(scene->objects[0].receives_shadows);
+  EXPECT_TRUE(scene->objects[1].casts_shadows);
+  EXPECT_FALSE(scene->objects[1].receives_shadows);
+  EXPECT_TRUE(scene->objects[2].casts_shadows && scene->objects[2].receives_shadows);
+  EXPECT_EQ(scene->lights[0].range, 12.5f);
+  EXPECT_TRUE(scene->lights[0].limited());
+  EXPECT_FALSE(scene->lights[1].limited());
+}
+
 struct Bad {
   const char* name;
   const char* json;
@@ -129,6 +148,19 @@ INSTANTIATE_TEST_SUITE_P(
     BadFiles, SceneFileRefuses,
     ::testing::Values(
         Bad{"not_json", "{ camera: ", "not valid JSON"},
+        Bad{"range_of_a_direction",
+            R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+                "lights": [{"direction": [0,-1,0], "range": 5}], "objects": []})",
+            "scene.lights[0].range: only a point light (position) has a range"},
+        Bad{"zero_range",
+            R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+                "lights": [{"position": [0,5,0], "range": 0}], "objects": []})",
+            "scene.lights[0].range: must be positive (leave it out for none)"},
+        Bad{"casts_not_a_flag",
+            R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+                "lights": [{"position": [0,5,0]}],
+                "objects": [{"shape": "box", "casts_shadows": 1}]})",
+            "scene.objects[0].casts_shadows: expected true or false"},
         Bad{"no_camera", R"({"lights": [], "objects": []})", "scene.camera: missing"},
         Bad{"unknown_key", R"({"camera": {"position": [0,2,5], "target": [0,0,0], "zoom": 2}})",
             "scene.camera.zoom: unknown key (expected one of: position, target, up, fov, near, "

@@ -19,8 +19,8 @@
 #include "scene/mesh_io.h"
 #include "scene/scene.h"
 #include "scene/scene_io.h"
-#include "trace/reference.h"
 #include "test_meshes.h"
+#include "trace/reference.h"
 #include "verify/verify.h"
 
 namespace shadowvol {
@@ -318,7 +318,8 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   EXPECT_EQ(scene.error().message,
             "unknown scene 'dmeo': the built-in scenes are demo, camera-in-shadow, light-in-view, "
             "directional, nonmanifold, glass, knight, knights16, robots, corridor, tree, "
-            "tree-decomposed, city, city-above (city:N and city-above:N: a city of N buildings)");
+            "tree-decomposed, city, city-above, night-street (city:N and city-above:N: a city of N "
+            "buildings; night-street:N: N lamps)");
 }
 
 TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
