@@ -86,6 +86,9 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
          "--slices", args.slices,
          "--clamp discrete or both: the strips of the image, 1 .. " + std::to_string(kMaxSlices))
       ->capture_default_str();
+  cmd->add_flag("--serial-volumes", args.serial_volumes,
+                "Build the CPU volumes per light after the depth pass, instead of on worker "
+                "threads beside it (the update manager; Intel, \"Threading Shadow Volumes\")");
   cmd->add_option("--light-view", args.light_view,
                   "--cull, --clamp: the side of each light view, in pixels (a cube's faces each)")
       ->capture_default_str();
@@ -157,6 +160,7 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scen
   options.occlusion = *occlusion;
   options.slices = args.slices;
   options.light_view_size = args.light_view;
+  options.overlap_volumes = !args.serial_volumes;
   if (auto ok = check_light_view_size(args.light_view); !ok)
     return make_error("--light-view: " + ok.error().message);
   if (auto ok = check_options(options); !ok) return make_error("--size: " + ok.error().message);

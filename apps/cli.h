@@ -55,6 +55,7 @@ struct FrameArgs {
   std::string clamp = "none";
   int slices = kDefaultSlices;
   int light_view = 512;
+  bool serial_volumes = false;  // RenderOptions::overlap_volumes off
 };
 // `with_backend`: false for the viewer, which is OpenGL by nature.
 void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend = true);

@@ -36,6 +36,9 @@ void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_
       "plane %d, volumes built %d, reused %d\n",
       s.triangles, s.volume_primitives, s.objects_zpass, s.objects_zfail, s.objects_split,
       s.volumes_built, s.volumes_reused);
+  if (s.ms_volume_builds > 0)
+    std::printf("  volume builds %.1f ms, of which %.1f ms beside the depth pass (hidden)\n",
+                s.ms_volume_builds, s.ms_volumes_hidden);
   if (s.parts_zpass > 0)
     std::printf(
         "  parts of z-fail objects counted by z-pass (their own spheres miss the near "

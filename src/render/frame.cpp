@@ -145,7 +145,8 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
 FrameStats& FrameStats::operator+=(const FrameStats& other) {
   using S = FrameStats;
   for (double S::*ms : {&S::ms_depth, &S::ms_volumes, &S::ms_counts, &S::ms_shade, &S::ms_readback,
-                        &S::ms_cull, &S::ms_clamp, &S::ms_bvh, &S::ms_occlusion, &S::ms_measuring})
+                        &S::ms_cull, &S::ms_clamp, &S::ms_bvh, &S::ms_occlusion, &S::ms_measuring,
+                        &S::ms_volume_builds, &S::ms_volumes_hidden})
     this->*ms += other.*ms;
   for (std::uint64_t S::*n :
        {&S::cull_queries, &S::volume_segments, &S::slice_queries, &S::clamp_pairs, &S::clamp_swaps,

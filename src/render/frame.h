@@ -128,6 +128,11 @@ struct RenderOptions {
   int slices = kDefaultSlices;  // discrete clamping's strips of the image
   // The side of each light view culling and clamping test in, in pixels (a cube's faces each).
   int light_view_size = 512;
+  // The update manager (Intel, "Threading Shadow Volumes"): the CPU volumes that changed are
+  // rebuilt on worker threads while the depth pass runs, and joined before the first count pass,
+  // where nothing decided after the depth pass changes them (no culling, clamping or shadow
+  // occlusion culling; else they are built per light, after it). Off: built per light, after.
+  bool overlap_volumes = true;
   // Measures the fill of the volumes (FrameStats::fill, and stencil_writes on the gl backend)
   // in passes of their own, apart from the frame's times.
   bool count_fill = false;
@@ -156,7 +161,12 @@ struct VolumeCosts {
 };
 
 struct FrameStats {
+  // ms_volumes: what the volumes cost the frame's own thread (with RenderOptions::overlap_volumes,
+  // the wait for the builds at the join).
   double ms_depth = 0, ms_volumes = 0, ms_counts = 0, ms_shade = 0;
+  // The CPU volumes' builds, wherever they ran, and of that the part that ran while the depth
+  // pass did (RenderOptions::overlap_volumes): hidden behind it.
+  double ms_volume_builds = 0, ms_volumes_hidden = 0;
   // Taking what the frame shows into Frame: ids, masks, light and image (the read-back verbs).
   double ms_readback = 0;
   // Measuring for the stats what is not the frame's work (RenderOptions::count_fill's passes,

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include "render/volume_overlay.h"
 
@@ -65,6 +66,30 @@ void timed(FrameBackend& backend, double& into, Step&& step) {
 
 }  // namespace
 
+// The update manager's builds of one frame: every light's changed volumes, on a worker thread,
+// while the depth pass runs (RenderOptions::overlap_volumes).
+struct Renderer::Builds {
+  tbb::task_group group;
+  bool joined = true;
+  FrameStats stats;  // the builds' own: built and reused
+  Clock::time_point start, end, depth_start, depth_end;
+
+  // Waits for them (once) and adds their stats, and how long they ran beside the depth pass.
+  void join(FrameStats& into) {
+    if (joined) return;
+    group.wait();
+    joined = true;
+    into.volumes_built += stats.volumes_built;
+    into.volumes_reused += stats.volumes_reused;
+    const auto ms = [](Clock::duration d) {
+      return std::chrono::duration<double, std::milli>(d).count();
+    };
+    into.ms_volume_builds += ms(end - start);
+    into.ms_volumes_hidden +=
+        std::max(0.0, ms(std::min(end, depth_end) - std::max(start, depth_start)));
+  }
+};
+
 Renderer::Renderer(std::unique_ptr<FrameBackend> backend) : backend_(std::move(backend)) {
   assert(backend_);
 }
@@ -95,6 +120,21 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   // A backend whose targets are memory fills the frame whatever is asked.
   read_back = read_back || !backend_->can_present();
   const FrameInputs in{scene, options, plan_, volumes_, frame};
+  // The update manager: every light's changed volumes built on a worker thread while the depth
+  // pass runs, where the plan's volumes stand from here on.
+  const bool cpu_volumes = backend_->counts_cpu_volumes() || options.show_volumes;
+  built_ahead_ = options.overlap_volumes && cpu_volumes && options.cull == Cull::none &&
+                 options.clamp == Clamp::none && !culls_shadows(options.occlusion) &&
+                 !scene.lights.empty();
+  Builds builds;
+  builds.joined = !built_ahead_;
+  if (built_ahead_)
+    builds.group.run([&] {
+      builds.start = Clock::now();
+      for (std::size_t l = 0; l < scene.lights.size(); ++l)
+        volumes_.update(scene, plan_, l, builds.stats);
+      builds.end = Clock::now();
+    });
   const std::size_t pixels = static_cast<std::size_t>(options.width) * options.height;
   const std::size_t lights = scene.lights.size();
   const bool glass = plan_.has_glass();
@@ -111,6 +151,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   // occlusion culling, where asked), its ids, then per light its shadows and light.
   auto draw_layer = [&](Layer layer, SurfaceLayer& out) {
     const bool opaque = layer == Layer::opaque;
+    if (opaque) builds.depth_start = Clock::now();
     timed(*backend_, stats.ms_depth, [&] {
       if (opaque && culls_eye(options.occlusion))
         return occlusion_.depth_pass(plan_, *backend_, stats);
@@ -122,6 +163,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
       backend_->end_depth();
       if (opaque) stats.objects_drawn += static_cast<int>(all_.size());
     });
+    if (opaque) builds.depth_end = Clock::now();
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
       if (plan_.transparent(o) != opaque &&
           !(opaque && culls_eye(options.occlusion) && !occlusion_.drawn()[o]))
@@ -145,7 +187,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
       for (std::size_t l = 0; l < lights; ++l)
         occlusion_.cull_volumes(plan_, l, *backend_, !glass, stats);
     }
-    for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out, read_back);
+    for (std::size_t l = 0; l < lights; ++l) light_layer(in, l, layer, out, read_back, builds);
   };
   draw_layer(Layer::opaque, frame);
   if (glass) {
@@ -157,6 +199,8 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
     frame.glass.shadowed.clear();
     frame.glass.transmitted.clear();
   }
+  // A frame without count passes still joins.
+  timed(*backend_, stats.ms_volumes, [&] { builds.join(stats); });
   timed(*backend_, stats.ms_shade, [&] { backend_->shade(); });
   if (read_back) {
     timed(*backend_, stats.ms_readback, [&] { backend_->read_image(frame.image); });
@@ -165,13 +209,20 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
 }
 
 void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, SurfaceLayer& out,
-                           bool read_back) {
+                           bool read_back, Builds& builds) {
   FrameStats& stats = in.frame.stats;
   const bool cpu = backend_->counts_cpu_volumes();
   timed(*backend_, stats.ms_volumes, [&] {
+    builds.join(stats);  // they read the plan's volumes: done before the depth bounds are written
     plan_depth_bounds(plan_, l);
-    const bool built = cpu || in.options.show_volumes;
-    backend_->volumes_ready(l, built ? volumes_.update(in.scene, plan_, l, stats) : none_rebuilt_);
+    if (!(cpu || in.options.show_volumes)) return backend_->volumes_ready(l, none_rebuilt_);
+    if (built_ahead_ && layer == Layer::opaque)  // built beside the depth pass
+      return backend_->volumes_ready(l, volumes_.rebuilt(l));
+    const auto start = Clock::now();
+    const std::vector<std::uint8_t>& rebuilt = volumes_.update(in.scene, plan_, l, stats);
+    stats.ms_volume_builds +=
+        std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    backend_->volumes_ready(l, rebuilt);
   });
   // Counts the volumes of the objects `which` takes, those not culled, in one call.
   auto count = [&](auto&& objects, auto&& which) {

@@ -24,9 +24,11 @@ class VolumeCache {
  public:
   // Rebuilds the volumes of this light that changed since the last call; counts built and reused
   // into stats. Returns, per object, whether its volume was rebuilt (1) or kept (0), valid until
-  // the next call.
+  // the next call for this light (rebuilt(light)). Calls for one cache come from one thread at a
+  // time (render/renderer.h runs them on a worker thread, beside the depth pass).
   const std::vector<std::uint8_t>& update(const Scene& scene, const FramePlan& plan,
                                           std::size_t light, FrameStats& stats);
+  const std::vector<std::uint8_t>& rebuilt(std::size_t light) const { return rebuilt_[light]; }
   const VolumeBuffer& volume(std::size_t light, std::size_t object) const {
     return cache_[light][object].volume;
   }
@@ -43,7 +45,7 @@ class VolumeCache {
   VolumeBuilder builder_;
   std::vector<std::vector<Entry>> cache_;  // [light][object]
   std::vector<VolumeJob> jobs_;
-  std::vector<std::uint8_t> rebuilt_;
+  std::vector<std::vector<std::uint8_t>> rebuilt_;  // [light][object]
 };
 
 }  // namespace shadowvol
