@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -33,6 +34,9 @@ struct Controls {
   Method method = Method::automatic;
   bool show_volumes = false, paused = false, screenshot = false;
   gl::GlSettings gl;
+  // Who casts and who receives, per object (SceneObject's flags), toggled on the selected one.
+  std::vector<std::uint8_t> casts, receives;
+  std::size_t selected = 0;
 
   void look_from(const Camera& camera) {
     target = camera.target;
@@ -117,6 +121,15 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
     case GLFW_KEY_F12:
       c.screenshot = true;
       break;
+    case GLFW_KEY_TAB:
+      if (!c.casts.empty()) c.selected = (c.selected + 1) % c.casts.size();
+      break;
+    case GLFW_KEY_C:
+      if (!c.casts.empty()) c.casts[c.selected] = !c.casts[c.selected];
+      break;
+    case GLFW_KEY_R:
+      if (!c.receives.empty()) c.receives[c.selected] = !c.receives[c.selected];
+      break;
     default:
       break;
   }
@@ -178,6 +191,10 @@ int run_viewer(const ViewArgs& args) {
     if (!args.scene.lights.empty()) controls.light = args.scene.lights[0].position;
     controls.method = args.options.method;
     controls.gl = args.gl;
+    for (const SceneObject& object : args.scene.objects) {
+      controls.casts.push_back(object.casts_shadows);
+      controls.receives.push_back(object.receives_shadows);
+    }
     glfwSetWindowUserPointer(window, &controls);
     glfwSetMouseButtonCallback(window, on_button);
     glfwSetCursorPosCallback(window, on_move);
@@ -196,6 +213,10 @@ int run_viewer(const ViewArgs& args) {
       scene.camera.target = controls.target;
       scene.camera.position = controls.eye();
       if (!scene.lights.empty()) scene.lights[0].position = controls.light;
+      for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        scene.objects[o].casts_shadows = controls.casts[o] != 0;
+        scene.objects[o].receives_shadows = controls.receives[o] != 0;
+      }
       RenderOptions options = args.options;
       options.width = std::min(width, 16384);
       options.height = std::min(height, 16384);
@@ -230,22 +251,30 @@ int run_viewer(const ViewArgs& args) {
                     std::string(gl::to_string(settings.volumes)).c_str(),
                     options.show_volumes ? "on" : "off", controls.paused ? "paused [Space]" : "");
       lines.push_back(line);
-      for (std::size_t o = 0; o < scene.objects.size() && o < 12; ++o) {
+      // Twelve objects about the selected one.
+      const std::size_t first =
+          std::min(controls.selected - std::min<std::size_t>(controls.selected, 5),
+                   scene.objects.size() - std::min<std::size_t>(scene.objects.size(), 12));
+      for (std::size_t o = first; o < scene.objects.size() && o < first + 12; ++o) {
         const int zfail = o < stats.zfail_lights.size() ? stats.zfail_lights[o] : 0;
         const int lights = static_cast<int>(scene.lights.size());
-        const Material& material = scene.objects[o].material;
+        const SceneObject& object = scene.objects[o];
         char glass[48] = "";
-        if (material.transparent())
-          std::snprintf(glass, sizeof glass, ", transparent (opacity %.2f)", material.opacity);
-        std::snprintf(line, sizeof line, "  %s: %s%s", scene.objects[o].name.c_str(),
+        if (object.material.transparent())
+          std::snprintf(glass, sizeof glass, ", transparent (opacity %.2f)",
+                        object.material.opacity);
+        std::snprintf(line, sizeof line, "%s %s: %s%s%s%s", o == controls.selected ? ">" : " ",
+                      object.name.c_str(),
                       zfail == 0        ? "z-pass"
                       : zfail == lights ? "z-fail"
                                         : "z-fail for some lights",
-                      glass);
+                      glass, object.casts_shadows ? "" : ", casts no shadows",
+                      object.receives_shadows ? "" : ", receives none");
         lines.push_back(line);
       }
       lines.push_back(
-          "drag: orbit  right drag: pan  wheel: zoom  shift+drag: light  F12: screenshot");
+          "drag: orbit  right drag: pan  wheel: zoom  shift+drag: light  F12: screenshot  Tab: "
+          "select  C: casts  R: receives");
       text->draw(lines, width, height);
 
       ++shown;
