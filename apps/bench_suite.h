@@ -94,6 +94,21 @@ struct CitySuiteOptions {
 // the scaling. Returns the process's exit status.
 int run_city_suite(const CitySuiteOptions& options);
 
+struct LightsSuiteOptions {
+  int frames = 5;
+  int width = 1920, height = 1080;
+  Method method = Method::automatic;
+  Backend backend = Backend::soft;
+  gl::GlSettings gl;
+  std::vector<int> lamps = {1, 2, 4, 8, 16, 24, 32, 48};
+  std::string json, csv, plot;  // as SuiteOptions's (csv and plot: none written)
+};
+
+// Runs `bench --suite lights`: per lamp count, the night street's frame time with its lamps'
+// ranges and with them lifted, in turn; a table, and JSON where asked. Returns the process's exit
+// status.
+int run_lights_suite(const LightsSuiteOptions& options);
+
 // Runs `bench --suite cc`: prints the table of totals, the ratios against the goals and the slice
 // sweep, writes the files. Returns the process's exit status.
 int run_cc_suite(const CcSuiteOptions& options);

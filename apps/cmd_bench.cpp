@@ -299,14 +299,27 @@ int city_suite(const BenchArgs& args) {
   return run_city_suite(suite);
 }
 
+// `bench --suite lights`: the size, method, frames and backend as given, else the suite's own.
+int lights_suite(const BenchArgs& args) {
+  if (auto ok = refuse_options_not_taken(args, {"--method", "--backend", "--volumes", "--counts"});
+      !ok)
+    return fail(ok.error().message);
+  if (!args.csv.empty() || !args.plot.empty())
+    return fail("--suite lights writes a table and --json, no --csv or --plot");
+  LightsSuiteOptions suite;
+  if (auto ok = take_suite_options(args, suite); !ok) return fail(ok.error().message);
+  return run_lights_suite(suite);
+}
+
 int suite(const BenchArgs& args) {
   if (args.suite.empty())
     return fail(args.csv.empty() ? "--plot needs --suite spsv, cc or city, or --versus"
                                  : "--csv needs --suite spsv, cc or city");
   if (args.suite == "cc") return cc_suite(args);
   if (args.suite == "city") return city_suite(args);
+  if (args.suite == "lights") return lights_suite(args);
   if (args.suite != "spsv")
-    return fail("--suite: unknown suite '" + args.suite + "': expected spsv, cc or city");
+    return fail("--suite: unknown suite '" + args.suite + "': expected spsv, cc, city or lights");
   if (auto ok = refuse_options_not_taken(args, {"--extrusion"}); !ok)
     return fail(ok.error().message);
   SuiteOptions suite{args.frames, 1024, 768, args.json_file, args.csv, args.plot};
@@ -375,7 +388,9 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       "(occlusion culling on the city of 1,000 to 10,000 buildings, street and above, "
       "none and --occlusion both: fill, frame and shadow-volume time, objects and "
       "volumes drawn, the scaling; 1280x720 and 8 frames unless --size, --frames, "
-      "--city-sizes; --method, --backend)");
+      "--city-sizes; --method, --backend) or lights (the night street's frame time against its "
+      "1 to 48 lamps, each of limited range, beside the same with the ranges lifted; 1920x1080 "
+      "and 5 frames unless --size, --frames; --method, --backend)");
   cmd->add_option("--city-sizes", args->city_sizes,
                   "With --suite city: the city sizes in buildings, smallest first (default "
                   "1000 2500 5000 10000)");

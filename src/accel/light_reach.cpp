@@ -97,10 +97,14 @@ void mark_beyond_reach(std::span<std::uint8_t> mask, std::span<const float> dept
     }
     std::fill(row, row + r.x0, std::uint8_t{1});
     std::fill(row + r.x1, row + width, std::uint8_t{1});
+    // The pixel's point, homogeneous: base + step x + along_z depth (ndc x linear in x).
     const float ndc_y = 1.0f - (float(y) + 0.5f) / float(height) * 2.0f;
+    const glm::vec4 base = inv_view_proj[0] * (1.0f / float(width) - 1.0f) +
+                           inv_view_proj[1] * ndc_y + inv_view_proj[3];
+    const glm::vec4 step = inv_view_proj[0] * (2.0f / float(width));
+    const glm::vec4 along_z = inv_view_proj[2];
     for (int x = r.x0; x < r.x1; ++x) {
-      const glm::vec4 q = inv_view_proj * glm::vec4((float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
-                                                    ndc_y, z[x], 1.0f);
+      const glm::vec4 q = base + step * float(x) + along_z * z[x];
       const glm::vec3 d = glm::vec3(q) / q.w - centre;
       // No surface (depth 0, a point at infinity) is beyond every range.
       if (!(glm::dot(d, d) < range2)) row[x] = 1;

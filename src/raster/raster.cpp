@@ -506,13 +506,24 @@ void Target::clear_depth(float z) {
 
 // Sweeps the buffer band by band, in parallel, as the draws use it.
 void Target::take_nonzero_counts(std::span<std::uint8_t> nonzero) {
+  take_nonzero_counts(nonzero, {0, 0, width, height});
+}
+
+void Target::take_nonzero_counts(std::span<std::uint8_t> nonzero, const PixelRect& within) {
   assert(nonzero.size() == count.size());
-  tbb::parallel_for(0, tiles_y, [&](int band) {
-    const auto first = static_cast<std::size_t>(band) * kTileSize * width;
-    const auto end = std::min(count.size(), first + std::size_t{kTileSize} * width);
-    for (std::size_t p = first; p < end; ++p) {
-      nonzero[p] = count[p] != 0;
-      count[p] = 0;
+  // The tiles the rectangle meets, whole, as a scissored draw counts them.
+  const int x0 = std::max(0, within.x0) / kTileSize * kTileSize;
+  const int x1 = std::min(width, (within.x1 + kTileSize - 1) / kTileSize * kTileSize);
+  const int y0 = std::max(0, within.y0) / kTileSize;
+  const int y1 = std::min(tiles_y, (within.y1 + kTileSize - 1) / kTileSize);
+  if (within.empty() || x0 >= x1) return;
+  tbb::parallel_for(y0, y1, [&](int band) {
+    for (int y = band * kTileSize; y < std::min(height, (band + 1) * kTileSize); ++y) {
+      const std::size_t row = static_cast<std::size_t>(y) * width;
+      for (std::size_t p = row + x0; p < row + x1; ++p) {
+        nonzero[p] = count[p] != 0;
+        count[p] = 0;
+      }
     }
   });
 }

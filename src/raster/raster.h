@@ -107,6 +107,9 @@ struct Target {
   // Writes count != 0 per pixel into `nonzero` (width * height bytes, 1 or 0) and leaves every
   // count zero: one sweep over the buffer instead of a read and a clear.
   void take_nonzero_counts(std::span<std::uint8_t> nonzero);
+  // The same over the tiles `within` meets only (a scissored pass's), leaving `nonzero` elsewhere
+  // as it was: counts outside them must be zero.
+  void take_nonzero_counts(std::span<std::uint8_t> nonzero, const PixelRect& within);
   // Adds count * per_count per pixel into `sum` (width * height entries) and leaves every count
   // zero: how a group of transparent casters' surface counts enter a light intensity map.
   void take_counts_into(std::span<glm::vec3> sum, const glm::vec3& per_count);

@@ -233,9 +233,10 @@ void SoftBackend::end_group(std::size_t g) {
   target_.take_counts_into(log_light_, in_->plan.glass[g].log_transmittance);
 }
 
+// A light of limited range counted only within its scissor: the rest of its mask is beyond it.
 void SoftBackend::read_mask(std::size_t l, SurfaceLayer& layer) {
-  target_.take_nonzero_counts(layer.shadowed[l]);
   const FramePlan& plan = in_->plan;
+  target_.take_nonzero_counts(layer.shadowed[l], plan.reach[l].scissor);
   mark_beyond_reach(layer.shadowed[l], target_.depth, plan.inv_view_proj, plan.lights[l],
                     in_->scene.lights[l].range, plan.reach[l], target_.width, target_.height);
 }
