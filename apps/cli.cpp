@@ -99,8 +99,9 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
                     "can be made and draws the method, else soft)")
         ->capture_default_str();
   cmd->add_option("--volumes", args.volumes,
-                  "gl: volumes built on the cpu (any generator) or in a geometry shader on the gpu "
-                  "(standard or robust)")
+                  "gl: volumes built on the cpu (any generator), in a geometry shader on the gpu "
+                  "(standard or robust), or extruded in the vertex shader from a volume mesh made "
+                  "once per mesh (vs; standard or robust)")
       ->capture_default_str();
   cmd->add_option("--counts", args.counts,
                   "gl: count volumes in the stencil buffer (weights other than +-1 drawn "

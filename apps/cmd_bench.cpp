@@ -36,6 +36,7 @@ struct BenchArgs {
   std::string versus;               // --versus: embree, gl or both
   bool animate = false;             // --animate: step the scenes' animation frame by frame
   bool serial_baseline = false;     // --serial-baseline: also time with the volumes built after
+  bool volume_paths = false;        // --volume-paths: also time gl's other volume paths
   CLI::App* cmd = nullptr;
   CLI::Option* json = nullptr;
   bool given(const char* option) const { return cmd->get_option(option)->count() > 0; }
@@ -104,6 +105,23 @@ int bench(const BenchArgs& args) {
       serial_at = timed.size();
       timed.push_back({*serial_renderer, resolved->scene, serial});
     }
+    // gl's other two volume paths (CPU, geometry shader, vertex shader), frame for frame in turn.
+    std::vector<std::pair<gl::VolumePath, std::unique_ptr<Renderer>>> paths;
+    std::size_t paths_at = timed.size();
+    if (args.volume_paths) {
+      if (resolved->backend != Backend::gl)
+        return fail("--volume-paths compares the gl backend's volume paths: give --backend gl");
+      for (const gl::VolumePath path :
+           {gl::VolumePath::cpu, gl::VolumePath::gpu, gl::VolumePath::vertex}) {
+        if (path == resolved->gl.volumes) continue;
+        ResolvedFrame other = *resolved;
+        other.gl.volumes = path;
+        auto made = make_frame_renderer(other, options);
+        if (!made) return fail(made.error().message);
+        paths.emplace_back(path, std::move(*made));
+      }
+      for (auto& [path, r] : paths) timed.push_back({*r, resolved->scene, options});
+    }
     std::optional<ClassicGl> classic;
     if (baselines.gl) {
       auto made = classic_gl(options);
@@ -137,6 +155,14 @@ int bench(const BenchArgs& args) {
                 {"volumes_built", double(sum.volumes_built) / n}});
     row.update(cc_json(sum, args.frames, false));  // fill: bench --suite cc
     row.update(nlohmann::json::object({occlusion_json(sum, args.frames)}));
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      const FrameTiming& other = t[paths_at + k];
+      row["volume_paths"][std::string(gl::to_string(paths[k].first))] = {
+          {"frame_ms", other.frame_ms},
+          {"volumes_ms", other.total.ms_volumes / n},
+          {"counts_ms", other.total.ms_counts / n},
+          {"ratio", t[0].frame_ms / other.frame_ms}};
+    }
     row["volume_builds_ms"] = sum.ms_volume_builds / n;
     row["volumes_hidden_ms"] = sum.ms_volumes_hidden / n;
     if (serial_renderer) {
@@ -187,6 +213,15 @@ int bench(const BenchArgs& args) {
       std::printf("%-16s %s %dx%d: %7.2f ms a frame all opaque: transparency costs %.2fx\n", "",
                   backend.c_str(), options.width, options.height, t[1].frame_ms,
                   t[0].frame_ms / t[1].frame_ms);
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      const FrameTiming& other = t[paths_at + k];
+      std::printf(
+          "%-16s gl %dx%d --volumes %s: %7.2f ms a frame (volumes %.2f, counts %.2f): "
+          "--volumes %s's frame is %.2fx\n",
+          "", options.width, options.height, std::string(gl::to_string(paths[k].first)).c_str(),
+          other.frame_ms, other.total.ms_volumes / n, other.total.ms_counts / n,
+          frame.volumes.c_str(), t[0].frame_ms / other.frame_ms);
+    }
     if (serial_renderer)
       std::printf(
           "%-16s %s %dx%d: volume builds %.2f ms, %.2f of them beside the depth pass; built "
@@ -365,6 +400,9 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "in 8-wide packets over every thread, its BVH built in the frame and kept; and "
                   "the hybrid: our depth pass, then Embree's shadow rays), gl (the classic frame "
                   "on the gl backend: CPU volumes, z-fail, stencil), or embree,gl");
+  cmd->add_flag("--volume-paths", args->volume_paths,
+                "With --backend gl: also time each scene with gl's other volume paths (cpu, gpu: "
+                "the geometry shader, vs: the vertex shader), frame for frame in turn");
   cmd->add_flag("--serial-baseline", args->serial_baseline,
                 "Also time each scene with its CPU volumes built after the depth pass (not beside "
                 "it, by the update manager), frame for frame in turn, and print the ratio");

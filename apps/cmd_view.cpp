@@ -31,7 +31,8 @@ void add_view_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "view",
       "Open a window on a scene (OpenGL): drag to orbit, right-drag to pan, wheel to zoom, "
-      "shift-drag the light; M method, V volumes, G cpu/gpu volumes, Tab select an object, C its casting, R its receiving, F12 screenshot");
+      "shift-drag the light; M method, V volumes, G cpu/gpu/vs volumes, Tab select an object, C "
+      "its casting, R its receiving, F12 screenshot");
   add_frame_options(cmd, args->frame, false);
   cmd->add_option("--frames", args->frames, "Close after this many frames (0: when closed)")
       ->capture_default_str();

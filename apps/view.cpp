@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -112,8 +112,9 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
       c.show_volumes = !c.show_volumes;
       break;
     case GLFW_KEY_G:
-      c.gl.volumes =
-          c.gl.volumes == gl::VolumePath::cpu ? gl::VolumePath::gpu : gl::VolumePath::cpu;
+      c.gl.volumes = c.gl.volumes == gl::VolumePath::cpu   ? gl::VolumePath::gpu
+                     : c.gl.volumes == gl::VolumePath::gpu ? gl::VolumePath::vertex
+                                                           : gl::VolumePath::cpu;
       break;
     case GLFW_KEY_SPACE:
       c.paused = !c.paused;

@@ -35,18 +35,20 @@ Expected<std::unique_ptr<Renderer>> make_gl(const gl::GlSettings& settings) {
 
 Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_settings,
                                      const RenderOptions& options) {
-  const bool gpu_volumes = gl_settings.volumes == gl::VolumePath::gpu;
+  // Volumes built in a shader: only the gl backend has one.
+  const bool gpu_volumes = gl_settings.volumes != gl::VolumePath::cpu;
+  const std::string path = "--volumes " + std::string(gl::to_string(gl_settings.volumes));
   auto soft = [] { return std::make_unique<Renderer>(std::make_unique<soft::SoftBackend>()); };
   if (backend == Backend::soft) {
     if (gpu_volumes)
-      return make_error("geometry-shader volumes (--volumes gpu) need the gl backend");
+      return make_error("volumes built in a shader (" + path + ") need the gl backend");
     return MadeRenderer{soft(), ""};
   }
   if (auto ok = gl::check_settings(gl_settings, options.generator); !ok) return ok.error();
   if (auto drawable = gl::check_frame(gl_settings, options); !drawable) {
     const std::string& reason = drawable.error().message;
     if (backend == Backend::gl) return make_error(reason + "; use --backend soft");
-    if (gpu_volumes) return make_error("--volumes gpu needs the gl backend, but " + reason);
+    if (gpu_volumes) return make_error(path + " needs the gl backend, but " + reason);
     return MadeRenderer{soft(), "backend auto: soft, since " + reason};
   }
   auto gl = make_gl(gl_settings);
@@ -56,8 +58,7 @@ Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_s
     return MadeRenderer{std::move(*gl), note};
   }
   if (backend == Backend::gl) return gl.error();
-  if (gpu_volumes)
-    return make_error("--volumes gpu needs the gl backend, and " + gl.error().message);
+  if (gpu_volumes) return make_error(path + " needs the gl backend, and " + gl.error().message);
   return MadeRenderer{soft(), "backend auto: soft, since " + gl.error().message};
 }
 

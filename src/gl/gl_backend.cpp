@@ -55,10 +55,12 @@ void flip_rows(const std::vector<In>& in, int w, int h, std::vector<Out>& out, C
 
 }  // namespace
 
-std::string_view to_string(VolumePath path) { return path == VolumePath::cpu ? "cpu" : "gpu"; }
+std::string_view to_string(VolumePath path) {
+  return path == VolumePath::cpu ? "cpu" : path == VolumePath::gpu ? "gpu" : "vs";
+}
 
 Expected<VolumePath> parse_volume_path(std::string_view name) {
-  return parse_name(name, {VolumePath::cpu, VolumePath::gpu}, "volume path");
+  return parse_name(name, {VolumePath::cpu, VolumePath::gpu, VolumePath::vertex}, "volume path");
 }
 
 std::string_view to_string(CountTarget target) {
@@ -79,11 +81,11 @@ Expected<CountTarget> parse_count_target(std::string_view name) {
 }
 
 Expected<void> check_settings(const GlSettings& settings, Generator generator) {
-  if (settings.volumes == VolumePath::gpu && generator == Generator::multiplicity)
+  if (settings.volumes != VolumePath::cpu && generator == Generator::multiplicity)
     return make_error(
-        "the geometry shader builds standard or robust volumes (one +-1 side per face and "
-        "edge); use --generator robust, standard or auto with --volumes gpu, or --volumes cpu "
-        "for multiplicity");
+        "the geometry and vertex shaders build standard or robust volumes (one +-1 side per "
+        "face and edge); use --generator robust, standard or auto with --volumes gpu or vs, or "
+        "--volumes cpu for multiplicity");
   return {};
 }
 
@@ -352,6 +354,13 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
          "gpu volumes into the light map",
          {{GL_VERTEX_SHADER, kPassVertex},
           {GL_GEOMETRY_SHADER, kVolumeGeometry},
+          {GL_FRAGMENT_SHADER, light_map[strips].c_str()}}},
+        {&r->volume_vs_[strips],
+         "volumes extruded in the vertex shader",
+         {{GL_VERTEX_SHADER, kVolumeExtrusionVertex}, {GL_FRAGMENT_SHADER, count[strips].c_str()}}},
+        {&r->light_map_vs_[strips],
+         "volumes extruded in the vertex shader into the light map",
+         {{GL_VERTEX_SHADER, kVolumeExtrusionVertex},
           {GL_FRAGMENT_SHADER, light_map[strips].c_str()}}}};
     for (const Build& b : counts)
       if (auto ok = link(b, std::string(b.name) + in); !ok) return ok.error();
@@ -436,7 +445,7 @@ Expected<void> check_frame(const GlSettings& settings, const RenderOptions& opti
                       "built in the software rasterizer)");
   if (options.tile_work)
     return make_error("the tile work of a heatmap is counted by the software rasterizer only");
-  if (settings.volumes == VolumePath::gpu && clamps_continuous(options.clamp))
+  if (settings.volumes != VolumePath::cpu && clamps_continuous(options.clamp))
     return make_error(
         "continuous clamping builds each volume's segments on the CPU (CC shadow volumes sec. "
         "5.1: volumes built on the GPU do not adapt to it); use --volumes cpu, or --clamp "
@@ -548,6 +557,7 @@ void GlBackend::begin_frame(const FrameInputs& inputs) {
   }
   std::erase_if(meshes_, [](const auto& entry) { return !entry.second->used; });
   cpu_ = settings_.volumes == VolumePath::cpu;
+  gs_ = settings_.volumes == VolumePath::gpu;
   uploads_.resize(std::max(uploads_.size(), inputs.scene.lights.size()));
 
   glViewport(0, 0, w, h);
@@ -605,11 +615,11 @@ void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_GREATER);  // nearer is greater
   glNamedFramebufferDrawBuffers(t.scene.get(), 2, opaque ? kBoth : kIdsOnly);
-  glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
+  glUseProgram(surface_depth_[gs_ ? 1 : 0].get());
   std::vector<std::uint32_t>& drawn = drawn_[static_cast<int>(layer_)];
   drawn.insert(drawn.end(), objects.begin(), objects.end());
   // The opaque layer's objects in one multi-draw, where the surfaces pass the vertex shader alone.
-  if (batching_ && cpu_ && opaque && objects.size() > 1) {
+  if (batching_ && !gs_ && opaque && objects.size() > 1) {
     make_scene_geometry();
     SceneGeometry& g = *geometry_;
     g.object_data.resize(plan.objects.size());
@@ -649,7 +659,7 @@ void GlBackend::end_depth() {
   const Scene& scene = in_->scene;
   const FramePlan& plan = in_->plan;
   Targets& t = *targets_;
-  glUseProgram(surface_depth_[cpu_ ? 0 : 1].get());
+  glUseProgram(surface_depth_[gs_ ? 1 : 0].get());
   glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
   glDepthFunc(GL_EQUAL);
   glEnable(GL_BLEND);
@@ -825,16 +835,27 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
     const bool robust = v.build.generator != Generator::standard;
     MeshBuffers* m = frame_meshes_[o];
     if (!m->adjacency_vao) m->build_adjacency();
-    glBindVertexArray(m->adjacency_vao.get());
+    // The geometry shader takes the faces with their neighbours as primitives; the vertex
+    // shader reads the same from storage, a fixed number of vertices per face.
+    if (gs_) {
+      glBindVertexArray(m->adjacency_vao.get());
+    } else {
+      glBindVertexArray(empty_vao_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m->adjacency_positions.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m->adjacency_indices.get());
+    }
     glUniform4fv(glsl::kLight, 1, glm::value_ptr(v.object_light));
     glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(v.build.far_plane));
     glUniform1i(glsl::kRobust, robust);
     glUniform1i(glsl::kCaps, rule == Rule::zfail       ? glsl::kCapsAll
                              : v.light_caps_everywhere ? glsl::kCapsLight
                                                        : glsl::kCapsNone);
-    auto emit = [m](int mode) {
+    auto emit = [m, gs = gs_](int mode) {
       glUniform1i(glsl::kEmit, mode);
-      glDrawElements(GL_TRIANGLES_ADJACENCY, m->adjacency_index_count, GL_UNSIGNED_INT, nullptr);
+      if (gs)
+        glDrawElements(GL_TRIANGLES_ADJACENCY, m->adjacency_index_count, GL_UNSIGNED_INT, nullptr);
+      else
+        glDrawArrays(GL_TRIANGLES, 0, m->adjacency_index_count / 6 * glsl::kVertexVolumeCorners);
     };
     draw = [additive, robust, emit, mirror](const Range& range) {
       if (additive) {
@@ -1009,7 +1030,9 @@ void GlBackend::begin_mask(std::size_t l) {
   }
   scissor(l);
   const int strips = clamps_discrete(in_->options.clamp);
-  glUseProgram(cpu_ ? volume_cpu_[strips].get() : volume_gpu_[strips].get());
+  glUseProgram(cpu_  ? volume_cpu_[strips].get()
+               : gs_ ? volume_gpu_[strips].get()
+                     : volume_vs_[strips].get());
   set_viewport_uniform(strips);
 }
 
@@ -1025,7 +1048,9 @@ void GlBackend::begin_light_map(std::size_t l) {
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
   const int strips = clamps_discrete(in_->options.clamp);
-  glUseProgram(cpu_ ? light_map_cpu_[strips].get() : light_map_gpu_[strips].get());
+  glUseProgram(cpu_  ? light_map_cpu_[strips].get()
+               : gs_ ? light_map_gpu_[strips].get()
+                     : light_map_vs_[strips].get());
   set_viewport_uniform(strips);
 }
 
@@ -1230,7 +1255,7 @@ void GlBackend::light_pass(std::size_t l, Layer layer) {
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
   glDepthFunc(GL_EQUAL);
-  glUseProgram(surface_lit_[cpu_ ? 0 : 1].get());
+  glUseProgram(surface_lit_[gs_ ? 1 : 0].get());
   const SceneLight& light = scene.lights[l];
   const glm::vec3 radiance = light.color * light.intensity;
   glUniform4fv(glsl::kLight, 1, glm::value_ptr(plan.lights[l]));

@@ -38,6 +38,10 @@ namespace shadowvol::gl {
 enum class VolumePath : std::uint8_t {
   cpu,  // core's generators on the CPU (any generator), uploaded when rebuilt
   gpu,  // the geometry shader (standard or robust), every frame
+  // The vertex shader (standard or robust; Intel, "Rendering Shadow Volumes"): a volume mesh
+  // per mesh, fixed, drawn whole every frame, its vertices extruded or collapsed by the shader
+  // as the geometry shader would emit them.
+  vertex,
 };
 std::string_view to_string(VolumePath path);
 Expected<VolumePath> parse_volume_path(std::string_view name);
@@ -140,6 +144,7 @@ class GlBackend final : public FrameBackend {
   Object surface_depth_[2], surface_lit_[2];
   // The count passes' programs: [0] over the whole image, [1] with the strips' fragment test.
   Object volume_cpu_[2], volume_gpu_[2], light_map_cpu_[2], light_map_gpu_[2];
+  Object volume_vs_[2], light_map_vs_[2];
   Object cover_, see_through_, background_, resolve_, query_;
   Object volume_batch_, light_map_batch_;  // count_volumes' programs (kVolumeBatchVertex)
   Object depth_batch_;                     // draw_depth's (kSurfaceBatchVertex)
@@ -167,7 +172,8 @@ class GlBackend final : public FrameBackend {
   // The frame being drawn.
   const FrameInputs* in_ = nullptr;
   std::vector<MeshBuffers*> frame_meshes_;  // per object
-  bool cpu_ = true;              // volumes built on the CPU (else in the geometry shader)
+  bool cpu_ = true;  // volumes built on the CPU (else in the geometry or the vertex shader)
+  bool gs_ = false;  // in the geometry shader, whose light caps the surfaces pass through too
   bool unit_weights_ = true;     // every opaque caster's CPU volume of the light has weights +-1
   bool mask_additive_ = false;   // the light's mask counts into the R32F target, not the stencil
   bool into_light_map_ = false;  // count_volume adds into the light map

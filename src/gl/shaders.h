@@ -23,6 +23,9 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
                      kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25;
 
+// The vertices of a face in the vertex shader's volume mesh (kVolumeExtrusionVertex).
+inline constexpr int kVertexVolumeCorners = 24;
+
 // Which caps the volume geometry shader emits (uniform kCaps).
 inline constexpr int kCapsNone = 0;   // z-pass of an opaque caster: sides only
 inline constexpr int kCapsLight = 1;  // z-pass of a transparent caster: light caps too
@@ -223,38 +226,43 @@ void main() {
 }
 )";
 
+// What the volume shaders share (geometry and vertex): the volume's uniforms, a face's facing
+// and the extrusion onto the far plane, so that both paths decide alike.
+#define SHADOWVOL_GLSL_VOLUME                                                                    \
+  "layout(location = 4) uniform vec4 light;  // object space\n"                                  \
+  "layout(location = 5) uniform bool robust;  // false: standard, front faces only\n"            \
+  "layout(location = 6) uniform int caps;     // kCapsNone, kCapsLight, kCapsAll\n"              \
+  "layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted\n"  \
+  "layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity\n" \
+  "flat out int primitive_weight;\n"                                                             \
+  "invariant gl_Position;\n"                                                                     \
+  "\n"                                                                                           \
+  "int facing(vec4 a, vec4 b, vec4 c) {\n"                                                       \
+  "  precise vec3 na = cross(b.xyz - a.xyz, c.xyz - a.xyz);\n"                                   \
+  "  precise vec3 nb = cross(c.xyz - b.xyz, a.xyz - b.xyz);\n"                                   \
+  "  precise vec3 nc = cross(a.xyz - c.xyz, b.xyz - c.xyz);\n"                                   \
+  "  precise float da = dot(na, light.xyz - light.w * a.xyz);\n"                                 \
+  "  precise float db = dot(nb, light.xyz - light.w * b.xyz);\n"                                 \
+  "  precise float dc = dot(nc, light.xyz - light.w * c.xyz);\n"                                 \
+  "  if (da > 0.0 || db > 0.0 || dc > 0.0) return 1;\n"                                          \
+  "  if (da < 0.0 || db < 0.0 || dc < 0.0) return -1;\n"                                         \
+  "  return 0;\n"                                                                                \
+  "}\n"                                                                                          \
+  "\n"                                                                                           \
+  "// Where the ray from p away from the light meets the far plane (core/volume.h, extrude).\n"  \
+  "vec4 extrude(vec4 p) {\n"                                                                     \
+  "  vec3 r = light.w * p.xyz - light.xyz;\n"                                                    \
+  "  float along = dot(far_plane.xyz, r), before = dot(far_plane.xyz, p.xyz) + far_plane.w;\n"   \
+  "  return vec4(along * p.xyz - before * r, along);\n"                                          \
+  "}\n"                                                                                          \
+  "\n"
+
 // GPU Gems 3 listing 11-1, in the mesh's own space, for the standard and robust generators.
 inline constexpr const char* kVolumeGeometry = SHADOWVOL_GLSL_PRELUDE R"(
 layout(triangles_adjacency) in;
 layout(triangle_strip, max_vertices = 18) out;
 in vec4 object_position[];
-layout(location = 4) uniform vec4 light;  // object space
-layout(location = 5) uniform bool robust;  // false: standard, front faces only
-layout(location = 6) uniform int caps;     // kCapsNone, kCapsLight, kCapsAll
-layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted
-layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity
-flat out int primitive_weight;
-invariant gl_Position;
-
-int facing(vec4 a, vec4 b, vec4 c) {
-  precise vec3 na = cross(b.xyz - a.xyz, c.xyz - a.xyz);
-  precise vec3 nb = cross(c.xyz - b.xyz, a.xyz - b.xyz);
-  precise vec3 nc = cross(a.xyz - c.xyz, b.xyz - c.xyz);
-  precise float da = dot(na, light.xyz - light.w * a.xyz);
-  precise float db = dot(nb, light.xyz - light.w * b.xyz);
-  precise float dc = dot(nc, light.xyz - light.w * c.xyz);
-  if (da > 0.0 || db > 0.0 || dc > 0.0) return 1;
-  if (da < 0.0 || db < 0.0 || dc < 0.0) return -1;
-  return 0;
-}
-
-// Where the ray from p away from the light meets the far plane (core/volume.h, extrude).
-vec4 extrude(vec4 p) {
-  vec3 r = light.w * p.xyz - light.xyz;
-  float along = dot(far_plane.xyz, r), before = dot(far_plane.xyz, p.xyz) + far_plane.w;
-  return vec4(along * p.xyz - before * r, along);
-}
-
+)" SHADOWVOL_GLSL_VOLUME R"(
 // A vertex of the mesh (index i of the input), with the vertex shader's clip position.
 void emit_vertex(int i, int weight) {
   primitive_weight = weight;
@@ -309,6 +317,58 @@ void main() {
     emit_far(b, weight);
     EndPrimitive();
   }
+}
+)";
+
+// Volumes extruded in the vertex shader (Intel, "Rendering Shadow Volumes"), with the geometry
+// shader's decisions above, so that both paths draw the same primitives. The volume mesh is
+// fixed per mesh and drawn whole every frame: 24 vertices per face (kVertexVolumeCorners), a
+// light cap (0-2), a dark cap (3-5) and, per edge, a quad of two triangles (6-11, 12-17, 18-23),
+// each vertex's role (which corner, extruded or not) its index within the face's 24. Its data are
+// the geometry shader's input, read from storage buffers: the face's vertices and the far vertices
+// of its neighbours (w = 0: none). A primitive the geometry shader would not emit collapses to
+// a point, which rasterizes nothing. Extrusion is to the far plane (at infinity by default, w =
+// 0), as on the other paths, not to a fixed distance.
+inline constexpr const char* kVolumeExtrusionVertex = SHADOWVOL_GLSL_PRELUDE R"(
+layout(std430, binding = 4) readonly buffer Points { vec4 points[]; };
+layout(std430, binding = 5) readonly buffer Adjacency { uint adjacency[]; };
+)" SHADOWVOL_GLSL_VOLUME R"(
+void main() {
+  int face = gl_VertexID / 24, role = gl_VertexID % 24;
+  vec4 p[6];
+  for (int i = 0; i < 6; ++i) p[i] = points[adjacency[6 * face + i]];
+  int f = facing(p[0], p[2], p[4]);
+  // Which vertex of the face this corner is (0, 2 or 4), whether extruded, its primitive's
+  // weight, and whether the primitive is drawn at all.
+  int vertex = 0, weight = 0;
+  bool far = false, drawn = f != 0 && (robust || f > 0);
+  if (role < 3) {  // the light cap, in the depth pass's vertex order
+    drawn = drawn && caps != 0 && (emit == 2 || (emit == 0 && f > 0) || (emit == 1 && f < 0));
+    vertex = 2 * role;
+    weight = f;
+  } else if (role < 6) {  // the dark cap, weight -f: reversed where a draw takes only +1
+    drawn = drawn && caps == 2 && emit != 1 &&
+            (light.w != 0.0 || far_plane != vec4(0.0, 0.0, 0.0, -1.0));
+    bool reverse = emit == 0 && f > 0;
+    int corner = role - 3;
+    vertex = corner == 0 ? 0 : (corner == 1) == reverse ? 4 : 2;
+    far = true;
+    weight = emit == 0 ? 1 : -f;
+  } else {  // the side of edge i: the strip a, a_far, b, b_far as triangles (a, a_far, b),
+            // (b, a_far, b_far)
+    int i = (role - 6) / 6, corner = (role - 6) % 6;
+    int a = 2 * i, neighbour = 2 * i + 1, b = (2 * i + 2) % 6;
+    drawn = drawn && emit != 1 &&
+            (p[neighbour].w == 0.0 || facing(p[a], p[neighbour], p[b]) != f);
+    if (emit == 0 && f < 0) { int t = a; a = b; b = t; }
+    const int strip[6] = int[6](0, 1, 2, 2, 1, 3);  // strip positions of the two triangles
+    int s = strip[corner];
+    vertex = s < 2 ? a : b;
+    far = s == 1 || s == 3;
+    weight = emit == 0 ? 1 : f;
+  }
+  primitive_weight = weight;
+  gl_Position = !drawn ? vec4(0.0) : to_clip(far ? extrude(p[vertex]) : p[vertex]);
 }
 )";
 

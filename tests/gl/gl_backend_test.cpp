@@ -94,13 +94,23 @@ TEST(GlBackend, SettingsAreParsedAndCheckedWithClearMessages) {
   EXPECT_TRUE(check_settings({VolumePath::gpu, CountTarget::automatic}, Generator::robust).ok());
   EXPECT_TRUE(
       check_settings({VolumePath::cpu, CountTarget::stencil}, Generator::multiplicity).ok());
+  EXPECT_FALSE(
+      check_settings({VolumePath::vertex, CountTarget::automatic}, Generator::multiplicity).ok());
+  EXPECT_TRUE(check_settings({VolumePath::vertex, CountTarget::stencil}, Generator::robust).ok());
   EXPECT_EQ(parse_volume_path("gpu").value(), VolumePath::gpu);
+  EXPECT_EQ(parse_volume_path("vs").value(), VolumePath::vertex);
+  EXPECT_EQ(parse_volume_path("gs").error().message,
+            "unknown volume path 'gs': expected cpu, gpu or vs");
   EXPECT_EQ(parse_count_target("additive").value(), CountTarget::additive);
   EXPECT_EQ(parse_backend("auto").value(), Backend::automatic);
   EXPECT_EQ(parse_backend("dx12").error().message,
             "unknown backend 'dx12': expected soft, gl or auto");
   auto soft_gpu = make_renderer(Backend::soft, {VolumePath::gpu, CountTarget::automatic});
   ASSERT_FALSE(soft_gpu.ok());
+  auto soft_vs = make_renderer(Backend::soft, {VolumePath::vertex, CountTarget::automatic});
+  ASSERT_FALSE(soft_vs.ok());
+  EXPECT_EQ(soft_vs.error().message,
+            "volumes built in a shader (--volumes vs) need the gl backend");
 }
 
 }  // namespace

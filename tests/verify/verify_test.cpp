@@ -45,9 +45,12 @@ const Variant kSoftWhole{
     "soft_plane_per_object", Backend::soft, {}, SplitPlanes::sampled, SplitParts::whole};
 const Variant kGlCpu{"gl_cpu", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::automatic}};
 const Variant kGlGpu{"gl_gpu", Backend::gl, {gl::VolumePath::gpu, gl::CountTarget::automatic}};
+const Variant kGlVs{"gl_vs", Backend::gl, {gl::VolumePath::vertex, gl::CountTarget::automatic}};
 const Variant kGlAdditive{
     "gl_additive", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::additive}};
-const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlAdditive};
+const Variant kGlVsAdditive{
+    "gl_vs_additive", Backend::gl, {gl::VolumePath::vertex, gl::CountTarget::additive}};
+const Variant kVariants[] = {kSoft, kGlCpu, kGlGpu, kGlVs, kGlAdditive};
 // CC shadow volumes' culling and clamping (render/cc_shadow_volumes.h) on both backends.
 const Variant kSoftOcclusion{"soft_cull_occlusion", Backend::soft,    {},
                              SplitPlanes::sampled,  SplitParts::each, Cull::occlusion};
@@ -79,6 +82,13 @@ const Variant kGlCpuBoth{"gl_cpu_cull_frustum_clamp_both",
                          SplitParts::each,
                          Cull::frustum,
                          Clamp::both};
+const Variant kGlVsDiscrete{"gl_vs_cull_frustum_clamp_discrete",
+                            Backend::gl,
+                            {gl::VolumePath::vertex, gl::CountTarget::automatic},
+                            SplitPlanes::sampled,
+                            SplitParts::each,
+                            Cull::frustum,
+                            Clamp::discrete};
 const Variant kGlGpuDiscrete{"gl_gpu_cull_occlusion_clamp_discrete",
                              Backend::gl,
                              {gl::VolumePath::gpu, gl::CountTarget::automatic},
@@ -173,7 +183,7 @@ INSTANTIATE_TEST_SUITE_P(Clamped, BuiltinScenes,
                                             ::testing::Values(Method::zfail, Method::automatic),
                                             ::testing::Values(kSoftContinuous, kSoftDiscrete,
                                                               kSoftBothOcclusion, kGlCpuBoth,
-                                                              kGlGpuDiscrete),
+                                                              kGlGpuDiscrete, kGlVsDiscrete),
                                             ::testing::Values(Extrusion::infinite)),
                          scene_method_name);
 INSTANTIATE_TEST_SUITE_P(ClampedSoftOnly, BuiltinScenes,
@@ -203,7 +213,7 @@ INSTANTIATE_TEST_SUITE_P(Bounded, BuiltinScenes,
                          ::testing::Combine(::testing::ValuesIn(kSceneNames),
                                             ::testing::Values(Method::zpass, Method::zfail,
                                                               Method::automatic),
-                                            ::testing::Values(kSoft, kGlCpu, kGlGpu),
+                                            ::testing::Values(kSoft, kGlCpu, kGlGpu, kGlVs),
                                             ::testing::Values(Extrusion::bounded)),
                          scene_method_name);
 
@@ -271,10 +281,10 @@ TEST(BuiltinScenes, EveryGeneratorMatchesOnTheNonManifoldScene) {
   // in the stencil buffer by drawing those triangles twice.
   const Variant gl_stencil{
       "gl_stencil", Backend::gl, {gl::VolumePath::cpu, gl::CountTarget::stencil}};
-  for (const Variant& v : {kSoft, kGlCpu, kGlGpu, kGlAdditive, gl_stencil})
+  for (const Variant& v : {kSoft, kGlCpu, kGlGpu, kGlVs, kGlVsAdditive, kGlAdditive, gl_stencil})
     for (Generator g : {Generator::standard, Generator::robust, Generator::multiplicity}) {
       if (g == Generator::standard ||
-          (g == Generator::multiplicity && v.gl.volumes == gl::VolumePath::gpu))
+          (g == Generator::multiplicity && v.gl.volumes != gl::VolumePath::cpu))
         continue;
       for (Method m : {Method::zpass, Method::zfail}) {
         const Comparison c = verify(*scene, m, g, v);
@@ -285,18 +295,20 @@ TEST(BuiltinScenes, EveryGeneratorMatchesOnTheNonManifoldScene) {
     }
 }
 
-// The geometry shader's standard generator (front faces only) on closed meshes.
-TEST(BuiltinScenes, GeometryShaderStandardVolumesMatchOnClosedMeshes) {
+// The geometry shader's and the vertex shader's standard generator (front faces only) on closed
+// meshes.
+TEST(BuiltinScenes, ShaderStandardVolumesMatchOnClosedMeshes) {
   for (const char* name : {"demo", "directional"}) {
     auto scene = builtin_scene(name);
     ASSERT_TRUE(scene.ok());
     std::erase_if(scene->objects,
                   [](const SceneObject& o) { return !o.topology->report.closed_manifold; });
-    for (Method m : {Method::zpass, Method::zfail}) {
-      const Comparison c = verify(*scene, m, Generator::standard, kGlGpu);
-      EXPECT_GT(c.pixels_compared, 0u);
-      EXPECT_EQ(c.mismatched_outside_band, 0u) << name << " " << to_string(m);
-    }
+    for (Method m : {Method::zpass, Method::zfail})
+      for (const Variant& v : {kGlGpu, kGlVs}) {
+        const Comparison c = verify(*scene, m, Generator::standard, v);
+        EXPECT_GT(c.pixels_compared, 0u);
+        EXPECT_EQ(c.mismatched_outside_band, 0u) << name << " " << to_string(m) << " " << v.name;
+      }
   }
 }
 
@@ -631,7 +643,7 @@ TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
     ASSERT_TRUE(scene.ok());
     const RenderOptions options{kWidth, kHeight, Method::automatic, Generator::automatic};
     const Frame soft = render(kSoft, *scene, options);
-    for (const Variant& v : {kGlCpu, kGlGpu}) {
+    for (const Variant& v : {kGlCpu, kGlGpu, kGlVs}) {
       const Frame gl = render(v, *scene, options);
       ASSERT_EQ(gl.shadowed.size(), soft.shadowed.size());
       std::size_t differ = 0, outside_band = 0;
