@@ -12,6 +12,7 @@
 
 #include "bench_suite.h"
 #include "cli.h"
+#include "plot.h"
 #include "render/frame_timing.h"
 #include "scene/night_street.h"
 
@@ -45,6 +46,13 @@ int run_lights_suite(const LightsSuiteOptions& options) {
                "ms/frame", "ms/light", "counts ms", "shade ms", "unlimited", "ranged/unl.",
                "beyond", "scissor");
   nlohmann::json rows = nlohmann::json::array();
+  // --plot: the frame, and the frame per light, with the ranges and with them lifted.
+  const glm::vec3 kRanged{0.10f, 0.60f, 0.25f}, kUnlimited{0.45f, 0.45f, 0.45f};
+  PlotPanel frame_panel{
+      "ms a frame", {{"ranges", kRanged, {}}, {"ranges lifted", kUnlimited, {}}}, ""};
+  PlotPanel light_panel{
+      "ms a frame per light", {{"ranges", kRanged, {}}, {"ranges lifted", kUnlimited, {}}}, ""};
+  std::string lamp_counts;
   cli::StatusLine status;
   for (const int lamps : options.lamps) {
     const Scene ranged = make_night_street(lamps);
@@ -69,6 +77,11 @@ int run_lights_suite(const LightsSuiteOptions& options) {
                  ranged.objects.size(), t[0].frame_ms, t[0].frame_ms / lamps, s.ms_counts / n,
                  s.ms_shade / n, t[1].frame_ms, t[0].frame_ms / t[1].frame_ms, beyond,
                  100.0 * scissor_share);
+    frame_panel.series[0].values.push_back(t[0].frame_ms);
+    frame_panel.series[1].values.push_back(t[1].frame_ms);
+    light_panel.series[0].values.push_back(t[0].frame_ms / lamps);
+    light_panel.series[1].values.push_back(t[1].frame_ms / lamps);
+    lamp_counts += (lamp_counts.empty() ? "" : ",") + std::to_string(lamps);
     rows.push_back({{"lamps", lamps},
                     {"objects", ranged.objects.size()},
                     {"frame_ms", t[0].frame_ms},
@@ -89,17 +102,22 @@ int run_lights_suite(const LightsSuiteOptions& options) {
   std::fprintf(table,
                "  beyond: volumes of casters beyond a lamp's range, not built or drawn, a frame; "
                "scissor: the share of the lights' pixels outside their scissors\n");
-  if (!options.json.empty()) {
-    const nlohmann::json json{{"suite", "lights"},
-                              {"scene", "night-street"},
-                              {"backend", backend},
-                              {"width", options.width},
-                              {"height", options.height},
-                              {"frames", options.frames},
-                              {"rows", rows}};
-    if (!write_suite_outputs(options.json, json.dump(2) + "\n", "", "", "", Chart{}, "", table))
-      return 1;
-  }
+  Chart chart;
+  chart.title = "night-street, " + backend + ", " + std::to_string(options.width) + "x" +
+                std::to_string(options.height) + ": frame time against the lamps";
+  chart.x_label = "lamps per run: " + lamp_counts;
+  chart.columns = 2;
+  chart.panels = {frame_panel, light_panel};
+  const nlohmann::json json{{"suite", "lights"},
+                            {"scene", "night-street"},
+                            {"backend", backend},
+                            {"width", options.width},
+                            {"height", options.height},
+                            {"frames", options.frames},
+                            {"rows", rows}};
+  if (!write_suite_outputs(options.json, options.json.empty() ? "" : json.dump(2) + "\n", "", "",
+                           options.plot, chart, "the frame time against the lamps", table))
+    return 1;
   return 0;
 }
 

@@ -101,12 +101,12 @@ struct LightsSuiteOptions {
   Backend backend = Backend::soft;
   gl::GlSettings gl;
   std::vector<int> lamps = {1, 2, 4, 8, 16, 24, 32, 48};
-  std::string json, csv, plot;  // as SuiteOptions's (csv and plot: none written)
+  std::string json, csv, plot;  // as SuiteOptions's (no csv is written)
 };
 
 // Runs `bench --suite lights`: per lamp count, the night street's frame time with its lamps'
-// ranges and with them lifted, in turn; a table, and JSON where asked. Returns the process's exit
-// status.
+// ranges and with them lifted, in turn; a table, and JSON and a plot where asked. Returns the
+// process's exit status.
 int run_lights_suite(const LightsSuiteOptions& options);
 
 // Runs `bench --suite cc`: prints the table of totals, the ratios against the goals and the slice

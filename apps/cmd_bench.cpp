@@ -61,7 +61,7 @@ int bench(const BenchArgs& args) {
     baselines = *parsed;
   }
   if (!args.plot.empty() && !baselines.any())
-    return fail("--plot needs --suite spsv, cc or city, or --versus");
+    return fail("--plot needs --suite spsv, cc, city or lights, or --versus");
   nlohmann::json out = nlohmann::json::array();
   Chart chart;  // --plot: the comparisons' panels
   const bool json = args.json->count() > 0;
@@ -339,8 +339,7 @@ int lights_suite(const BenchArgs& args) {
   if (auto ok = refuse_options_not_taken(args, {"--method", "--backend", "--volumes", "--counts"});
       !ok)
     return fail(ok.error().message);
-  if (!args.csv.empty() || !args.plot.empty())
-    return fail("--suite lights writes a table and --json, no --csv or --plot");
+  if (!args.csv.empty()) return fail("--suite lights writes a table, --json and --plot, no --csv");
   LightsSuiteOptions suite;
   if (auto ok = take_suite_options(args, suite); !ok) return fail(ok.error().message);
   return run_lights_suite(suite);
@@ -348,7 +347,7 @@ int lights_suite(const BenchArgs& args) {
 
 int suite(const BenchArgs& args) {
   if (args.suite.empty())
-    return fail(args.csv.empty() ? "--plot needs --suite spsv, cc or city, or --versus"
+    return fail(args.csv.empty() ? "--plot needs --suite spsv, cc, city or lights, or --versus"
                                  : "--csv needs --suite spsv, cc or city");
   if (args.suite == "cc") return cc_suite(args);
   if (args.suite == "city") return city_suite(args);
