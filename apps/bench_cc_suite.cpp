@@ -77,14 +77,7 @@ int run_cc_suite(const CcSuiteOptions& options) {
   base.count_fill = true;
   base.slices = options.slices;
   base.light_view_size = options.light_view_size;
-  auto make = [&]() -> std::unique_ptr<Renderer> {
-    auto made = make_renderer(options.backend, options.gl, base);
-    if (!made) {
-      std::cerr << "shadowvol: error: " << made.error().message << "\n";
-      return nullptr;
-    }
-    return std::move(made->renderer);
-  };
+  auto make = [&] { return suite_renderer(options.backend, options.gl, base); };
   std::unique_ptr<Renderer> probe = make();
   if (!probe) return 1;
   const std::string backend(probe->backend().name());

@@ -87,14 +87,7 @@ int run_city_suite(const CitySuiteOptions& options) {
   }
   RenderOptions base{options.width, options.height, options.method};
   base.count_fill = true;
-  auto make = [&]() -> std::unique_ptr<Renderer> {
-    auto made = make_renderer(options.backend, options.gl, base);
-    if (!made) {
-      std::cerr << "shadowvol: error: " << made.error().message << "\n";
-      return nullptr;
-    }
-    return std::move(made->renderer);
-  };
+  auto make = [&] { return suite_renderer(options.backend, options.gl, base); };
   std::unique_ptr<Renderer> probe = make();
   if (!probe) return 1;
   const std::string backend(probe->backend().name());

@@ -24,14 +24,7 @@ int run_lights_suite(const LightsSuiteOptions& options) {
     return 1;
   }
   const RenderOptions frame_options{options.width, options.height, options.method};
-  auto make = [&]() -> std::unique_ptr<Renderer> {
-    auto made = make_renderer(options.backend, options.gl, frame_options);
-    if (!made) {
-      std::cerr << "shadowvol: error: " << made.error().message << "\n";
-      return nullptr;
-    }
-    return std::move(made->renderer);
-  };
+  auto make = [&] { return suite_renderer(options.backend, options.gl, frame_options); };
   std::unique_ptr<Renderer> probe = make();
   if (!probe) return 1;
   const std::string backend(probe->backend().name());

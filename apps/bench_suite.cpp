@@ -246,6 +246,16 @@ int run_spsv_suite(const SuiteOptions& options) {
              : 1;
 }
 
+std::unique_ptr<Renderer> suite_renderer(Backend backend, const gl::GlSettings& gl,
+                                         const RenderOptions& options) {
+  auto made = make_renderer(backend, gl, options);
+  if (!made) {
+    std::cerr << "shadowvol: error: " << made.error().message << "\n";
+    return nullptr;
+  }
+  return std::move(made->renderer);
+}
+
 bool write_suite_outputs(const std::string& json_path, const std::string& json,
                          const std::string& csv_path, const std::string& csv,
                          const std::string& plot_path, const Chart& chart, const char* what,

@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,11 @@ inline bool write_text(const std::string& path, const std::string& text) {
   out << text;
   return static_cast<bool>(out.flush());
 }
+
+// A suite's renderer of `backend` (and its gl settings) for frames of `options`, or null with the
+// error on stderr.
+std::unique_ptr<Renderer> suite_renderer(Backend backend, const gl::GlSettings& gl,
+                                         const RenderOptions& options);
 
 // Writes a suite's JSON, CSV and plot (`what` it shows, said on `table`) where their paths are
 // not empty; false, with the error on stderr, when one cannot be written.

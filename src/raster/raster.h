@@ -207,6 +207,7 @@ CountRule split_rule(const Target& target, int tile_x, int tile_y, const glm::ve
 struct DepthBounds {
   float zmin = 0.0f;
   float zmax = 1.0f;
+  bool operator==(const DepthBounds&) const = default;
 };
 // An occlusion query (GL_ANY_SAMPLES_PASSED): the covered pixels where a fragment of the
 // triangles lies at or in front of the stored depth, and the stored depth within `bounds`;

@@ -56,10 +56,7 @@ struct DepthBoundsInputs {
   glm::vec4 light{0.0f}, far_plane{0.0f};
   glm::mat4 view_proj{1.0f};
   raster::DepthBounds reach;  // the light's (LightReach::depth)
-  bool operator==(const DepthBoundsInputs& o) const {
-    return lo == o.lo && hi == o.hi && light == o.light && far_plane == o.far_plane &&
-           view_proj == o.view_proj && reach.zmin == o.reach.zmin && reach.zmax == o.reach.zmax;
-  }
+  bool operator==(const DepthBoundsInputs&) const = default;
 };
 
 // One object's volume for one light.

@@ -70,6 +70,7 @@ void timed(FrameBackend& backend, double& into, Step&& step) {
 // while the depth pass runs (RenderOptions::overlap_volumes).
 struct Renderer::Builds {
   tbb::task_group group;
+  bool ahead = false;  // the frame's volumes are built here, not per light after the depth pass
   bool joined = true;
   FrameStats stats;  // the builds' own: built and reused
   Clock::time_point start, end, depth_start, depth_end;
@@ -123,12 +124,12 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   // The update manager: every light's changed volumes built on a worker thread while the depth
   // pass runs, where the plan's volumes stand from here on.
   const bool cpu_volumes = backend_->counts_cpu_volumes() || options.show_volumes;
-  built_ahead_ = options.overlap_volumes && cpu_volumes && options.cull == Cull::none &&
+  Builds builds;
+  builds.ahead = options.overlap_volumes && cpu_volumes && options.cull == Cull::none &&
                  options.clamp == Clamp::none && !culls_shadows(options.occlusion) &&
                  !scene.lights.empty();
-  Builds builds;
-  builds.joined = !built_ahead_;
-  if (built_ahead_)
+  builds.joined = !builds.ahead;
+  if (builds.ahead)
     builds.group.run([&] {
       builds.start = Clock::now();
       for (std::size_t l = 0; l < scene.lights.size(); ++l)
@@ -200,7 +201,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
     frame.glass.transmitted.clear();
   }
   // A frame without count passes still joins.
-  timed(*backend_, stats.ms_volumes, [&] { builds.join(stats); });
+  if (!builds.joined) timed(*backend_, stats.ms_volumes, [&] { builds.join(stats); });
   timed(*backend_, stats.ms_shade, [&] { backend_->shade(); });
   if (read_back) {
     timed(*backend_, stats.ms_readback, [&] { backend_->read_image(frame.image); });
@@ -216,7 +217,7 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
     builds.join(stats);  // they read the plan's volumes: done before the depth bounds are written
     plan_depth_bounds(plan_, l);
     if (!(cpu || in.options.show_volumes)) return backend_->volumes_ready(l, none_rebuilt_);
-    if (built_ahead_ && layer == Layer::opaque)  // built beside the depth pass
+    if (builds.ahead && layer == Layer::opaque)  // built beside the depth pass
       return backend_->volumes_ready(l, volumes_.rebuilt(l));
     const auto start = Clock::now();
     const std::vector<std::uint8_t>& rebuilt = volumes_.update(in.scene, plan_, l, stats);

@@ -49,10 +49,11 @@ class Renderer {
 
  private:
   void draw(const Scene& scene, const RenderOptions& options, Frame& frame, bool read_back);
-  // Per light, the layer's shadows and light against the depth target as it stands; into `out`
-  // where read_back.
+  // The update manager's builds of one frame (RenderOptions::overlap_volumes): on a worker
+  // thread from the plan until the first count pass (or the colour) joins them.
   struct Builds;
-  // `builds`: the update manager's, joined before the first count pass.
+  // Per light, the layer's shadows and light against the depth target as it stands; into `out`
+  // where read_back. `builds`: the frame's, joined before the first count pass.
   void light_layer(const FrameInputs& in, std::size_t light, Layer layer, SurfaceLayer& out,
                    bool read_back, Builds& builds);
 
@@ -65,9 +66,6 @@ class Renderer {
   VolumeCosts costs_;  // measured on the backend at the first frame that clamps continuously
   VolumeCache volumes_;
   std::vector<std::uint8_t> none_rebuilt_;  // for a backend that builds its own volumes
-  // This frame's volumes were built by the update manager (RenderOptions::overlap_volumes), on a
-  // worker thread from the plan until the first count pass (or the colour) joined them.
-  bool built_ahead_ = false;
 };
 
 }  // namespace shadowvol

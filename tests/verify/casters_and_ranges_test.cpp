@@ -19,11 +19,7 @@ namespace {
 
 constexpr int kWidth = 200, kHeight = 120;
 
-std::unique_ptr<Renderer> renderer_for(Backend backend) {
-  auto made = make_renderer(backend);
-  EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
-  return made ? std::move(made->renderer) : nullptr;
-}
+using testing::renderer_for;
 
 RenderOptions options() { return RenderOptions{kWidth, kHeight}; }
 

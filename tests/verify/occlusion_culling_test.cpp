@@ -11,6 +11,7 @@
 #include "accel/near_plane.h"
 #include "backend/backend.h"
 #include "core/shapes.h"
+#include "reference_check.h"
 #include "scene/city.h"
 #include "scene/scene.h"
 #include "test_meshes.h"
@@ -22,11 +23,7 @@ namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
 
-std::unique_ptr<Renderer> renderer_for(Backend backend) {
-  auto made = make_renderer(backend);
-  EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
-  return made ? std::move(made->renderer) : nullptr;
-}
+using testing::renderer_for;
 
 RenderOptions options_with(Occlusion occlusion, Method method = Method::automatic) {
   RenderOptions options{kWidth, kHeight, method, Generator::automatic};

@@ -4,12 +4,22 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
+#include "backend/backend.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
 
 namespace shadowvol::testing {
+
+// The renderer of a backend, or null (and a failure) where it cannot be made.
+inline std::unique_ptr<Renderer> renderer_for(Backend backend) {
+  auto made = make_renderer(backend);
+  EXPECT_TRUE(made.ok()) << (made ? "" : made.error().message);
+  return made ? std::move(made->renderer) : nullptr;
+}
 
 inline Frame render_checked(Renderer& renderer, const Scene& scene, const RenderOptions& options) {
   Frame frame = renderer.render(scene, options);
