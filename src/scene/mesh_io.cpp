@@ -1,13 +1,18 @@
 #include "scene/mesh_io.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <exception>
 #include <fstream>
+#include <sstream>
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 #include <assimp/ProgressHandler.hpp>
+
+#include "scene/declared_size.h"
 
 namespace shadowvol {
 namespace {
@@ -24,6 +29,46 @@ class ProgressForwarder : public Assimp::ProgressHandler {
  private:
   LoadProgress progress_;
 };
+
+// What assimp's validation found, in the file's own terms where we can find it: OBJ faces of
+// fewer than three vertices (a file cut short mid-line leaves one) and vertex numbers past the
+// vertices written, by line. Empty where the file shows nothing such.
+std::string explain_obj(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  long long vertices = 0;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "v") ++vertices;
+    if (keyword != "f") continue;
+    std::vector<std::string> corners;
+    for (std::string w; words >> w;) corners.push_back(w);
+    const std::string where = "line " + std::to_string(number) + ": ";
+    if (corners.size() < 3)
+      return where + "a face of " + std::to_string(corners.size()) +
+             (corners.size() == 1 ? " vertex" : " vertices") + " ('" + line.substr(0, 60) +
+             "'); a face needs three or more (is the file cut short?)";
+    for (const std::string& c : corners) {
+      const long long v = std::atoll(c.c_str());  // "7/2/3": the position's number
+      if (v > vertices || v < -vertices || v == 0)
+        return where + "the face uses vertex " + c.substr(0, c.find('/')) + " but only " +
+               std::to_string(vertices) + " vertices come before it";
+    }
+  }
+  return {};
+}
+
+// A reader's message, with what is wrong with the file first where assimp's is about its own
+// data structures ("Validation failed: aiMesh::mFaces[6] is a LINE but ...").
+std::string explain_failure(const std::filesystem::path& path, const std::string& why) {
+  if (why.find("Validation failed") == std::string::npos) return why;
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string found = ext == ".obj" ? explain_obj(path) : std::string();
+  return (found.empty() ? std::string("its data is inconsistent") : found) + "; assimp: " + why;
+}
 
 struct Gather {
   const aiScene* scene;
@@ -75,8 +120,9 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
     return make_error(name + ": is a directory, not a mesh file");
   if (!std::ifstream(path, std::ios::binary).good())
     return make_error(name + ": cannot be opened for reading (check its permissions)");
-  if (std::filesystem::file_size(path, ec) == 0 && !ec)
-    return make_error(name + ": the file is empty");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (size == 0 && !ec) return make_error(name + ": the file is empty");
+  if (auto fits = check_declared_size(path, size); !ec && !fits) return fits.error();
 
   Assimp::Importer importer;
   // Only positions and faces matter to a shadow caster; ask assimp for nothing else.
@@ -100,7 +146,8 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
     if (why.find("bad_alloc") != std::string::npos)
       return make_error(name + ": declares more data than fits in memory (a corrupt header?)");
     return make_error(name + ": cannot be read as a mesh (" +
-                      (why.empty() ? std::string("unknown format") : why) + ")");
+                      (why.empty() ? std::string("unknown format") : explain_failure(path, why)) +
+                      ")");
   }
   if (scene->mRootNode == nullptr)
     return make_error(name + ": the file has no scene hierarchy (no meshes placed in it)");

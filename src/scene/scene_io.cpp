@@ -20,10 +20,81 @@ namespace {
 
 using nlohmann::json;
 
-// Errors carry the key path; Reader methods return false after recording the first one.
+// Where the parser is, as a key path, kept by its callback: an error thrown while a value is read
+// (a number beyond a double's range) names the key the value belongs to.
+class ParsePosition {
+ public:
+  bool on(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        levels_.push_back({false, {}, 0});
+        break;
+      case json::parse_event_t::array_start:
+        levels_.push_back({true, {}, 0});
+        break;
+      case json::parse_event_t::key:
+        levels_.back().key = parsed.get<std::string>();
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        levels_.pop_back();
+        [[fallthrough]];
+      case json::parse_event_t::value:  // the value is whole: the next is another's
+        if (!levels_.empty()) {
+          ++levels_.back().index;
+          levels_.back().key.clear();
+        }
+        break;
+    }
+    return true;  // keep every value
+  }
+  std::string path() const {
+    std::string p = "scene";
+    for (const Level& l : levels_)
+      p += l.array ? "[" + std::to_string(l.index) + "]" : l.key.empty() ? "" : "." + l.key;
+    return p;
+  }
+
+ private:
+  struct Level {
+    bool array;
+    std::string key;
+    std::size_t index;
+  };
+  std::vector<Level> levels_;
+};
+
+}  // namespace
+
+std::string describe_json_error(const nlohmann::json::exception& e, const std::string& path) {
+  const std::string what = e.what();
+  // nlohmann's text is "[json.exception.KIND.ID] detail"; the detail is what a person needs.
+  const auto close = what.find("] ");
+  const std::string detail = close == std::string::npos ? what : what.substr(close + 2);
+  if (dynamic_cast<const json::parse_error*>(&e) != nullptr)
+    return path + ": not valid JSON (" + detail + ")";
+  if (dynamic_cast<const json::out_of_range*>(&e) != nullptr && e.id == 406) {
+    const auto open = detail.find('\'');
+    const std::string value =
+        open == std::string::npos ? detail : detail.substr(open + 1, detail.rfind('\'') - open - 1);
+    return path + ": the number " + value + " is beyond the range of a double";
+  }
+  const char* kind =
+      dynamic_cast<const json::type_error*>(&e) != nullptr         ? "a value of the wrong type"
+      : dynamic_cast<const json::out_of_range*>(&e) != nullptr     ? "a value out of range"
+      : dynamic_cast<const json::invalid_iterator*>(&e) != nullptr ? "an invalid position"
+                                                                   : "a JSON error";
+  return path + ": " + kind + " (" + detail + ")";
+}
+
+namespace {
+
+// Errors carry the key path; Reader methods return false after recording the first one. `at` is
+// the last path a method was given, for an exception that escapes one.
 struct Reader {
   std::string file;
   std::string error;
+  std::string at = "scene";
 
   bool fail(const std::string& path, const std::string& what) {
     if (error.empty()) error = file + ": " + path + ": " + what;
@@ -32,6 +103,7 @@ struct Reader {
   static std::string kind(const json& j) { return std::string(j.type_name()); }
 
   bool number(const json& j, const std::string& path, float& out) {
+    at = path;
     if (!j.is_number()) return fail(path, "expected a number, got " + kind(j));
     const double v = j.get<double>();
     if (!std::isfinite(v) || std::abs(v) > 1e18)
@@ -61,6 +133,7 @@ struct Reader {
   }
   bool keys(const json& object, const std::string& path,
             std::initializer_list<const char*> allowed) {
+    at = path;
     if (!object.is_object()) return fail(path, "expected an object {...}, got " + kind(object));
     for (const auto& [key, value] : object.items()) {
       bool known = false;
@@ -126,17 +199,10 @@ struct Reader {
 
 }  // namespace
 
-Expected<Scene> load_scene_file(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(name + ": cannot be opened for reading");
-  json root;
-  try {
-    root = json::parse(in, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    return make_error(name + ": not valid JSON (" + e.what() + ")");
-  }
-  Reader r{name, {}};
+namespace {
+
+Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, Reader& r) {
+  const std::string& name = r.file;
   Scene scene;
   scene.name = path.stem().string();
   if (!r.keys(root, "scene", {"camera", "lights", "objects", "ambient"}))
@@ -330,6 +396,30 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
     }
   }
   return scene;
+}
+
+}  // namespace
+
+Expected<Scene> load_scene_file(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return make_error(name + ": cannot be opened for reading");
+  json root;
+  ParsePosition position;
+  try {
+    root = json::parse(
+        in,
+        [&](int, json::parse_event_t event, json& parsed) { return position.on(event, parsed); },
+        true, /*ignore_comments=*/true);
+  } catch (const json::exception& e) {  // every kind: a syntax error, a number past a double's
+    return make_error(name + ": " + describe_json_error(e, position.path()));
+  }
+  Reader r{name, {}};
+  try {
+    return read_scene(path, root, r);
+  } catch (const json::exception& e) {  // a check missed: still a message, never terminate
+    return make_error(name + ": " + describe_json_error(e, r.at));
+  }
 }
 
 Expected<LoadedScene> load_scene(const std::string& name) {

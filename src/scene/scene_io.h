@@ -10,12 +10,19 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/expected.h"
 #include "scene/scene.h"
 
 namespace shadowvol {
 
 Expected<Scene> load_scene_file(const std::filesystem::path& path);
+
+// What went wrong in a JSON file, for a person: the key path where it did, then nlohmann's
+// detail without its "[json.exception...]" prefix. A number beyond a double (`1e400`) is named
+// with its text; every other kind (syntax, type, range, iterator, other) says which it is.
+std::string describe_json_error(const nlohmann::json::exception& e, const std::string& path);
 
 struct LoadedScene {
   Scene scene;

@@ -124,9 +124,9 @@ TEST(SceneFile, CasterFlagsAndLightRange) {
 }
 
 struct Bad {
-  const char* name;
-  const char* json;
-  const char* message;  // after "<file>: " (the JSON parser's own detail may follow)
+  std::string name;
+  std::string json;
+  std::string message;  // after "<file>: " (the JSON parser's own detail may follow)
 };
 
 void PrintTo(const Bad& bad, std::ostream* os) { *os << bad.name; }
@@ -147,7 +147,28 @@ constexpr const char* kLight = R"("lights": [{"position": [1, 5, 1]}])";
 INSTANTIATE_TEST_SUITE_P(
     BadFiles, SceneFileRefuses,
     ::testing::Values(
-        Bad{"not_json", "{ camera: ", "not valid JSON"},
+        Bad{"not_json", "{ camera: ", "scene: not valid JSON (parse error at line 1, column 3"},
+        Bad{"syntax_in_a_light", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1, 5 1]}]})",
+            "scene.lights[0].position[2]: not valid JSON (parse error at line 2"},
+        // nlohmann throws out_of_range for a number beyond a double: named with its key path.
+        Bad{"fov_past_a_double", R"({"camera": {"position": [0,2,5], "target": [0,0,0],
+              "fov": 1e400}})",
+            "scene.camera.fov: the number 1e400 is beyond the range of a double"},
+        Bad{"negative_past_a_double", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"color": [1, 1, 1]}, {"position": [1, -1e400, 1]}]})",
+            "scene.lights[1].position[1]: the number -1e400 is beyond the range of a double"},
+        Bad{"integer_past_a_double",
+            R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [0,5,0]}], "objects": [{"shape": "box", "transform":
+              {"translate": [)"
+            "1" +
+                std::string(400, '0') + R"(, 0, 0]}}]})",
+            "scene.objects[0].transform.translate[0]: the number 1" + std::string(400, '0') +
+                " is beyond the range of a double"},
+        Bad{"invalid_utf8",
+            "{\"camera\": {\"position\": [0,2,5], \"target\": [0,0,0]}, \"lig\xff\": 1}",
+            "scene: not valid JSON (parse error at line 1, column"},
         Bad{"range_of_a_direction",
             R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
                 "lights": [{"direction": [0,-1,0], "range": 5}], "objects": []})",
@@ -200,7 +221,44 @@ INSTANTIATE_TEST_SUITE_P(
               "objects": [{"shape": "box", "opacity": 0.5, "color": [2, 1, 1]}]})",
             "scene.objects[0].color: a transparent object's colour filters the light it passes, "
             "so each channel must lie in [0, 1]"}),
-    [](const auto& info) { return std::string(info.param.name); });
+    [](const auto& info) { return info.param.name; });
+
+// Whatever kind of nlohmann error escapes the reader, the message names the key path, the kind
+// and nlohmann's detail without its "[json.exception...]" prefix.
+TEST(SceneFile, EveryJsonErrorKindIsDescribed) {
+  using nlohmann::json;
+  const auto described = [](auto&& provoke) {
+    try {
+      provoke();
+    } catch (const json::exception& e) {
+      return describe_json_error(e, "scene.objects[2]");
+    }
+    return std::string("nothing thrown");
+  };
+  const std::string parse = described([] { [[maybe_unused]] const json j = json::parse("[1,"); });
+  EXPECT_EQ(parse.rfind("scene.objects[2]: not valid JSON (parse error at line 1", 0), 0u) << parse;
+  const std::string type =
+      described([] { [[maybe_unused]] const auto s = json(1).get<std::string>(); });
+  EXPECT_EQ(type,
+            "scene.objects[2]: a value of the wrong type (type must be string, but is number)");
+  const std::string range = described([] { [[maybe_unused]] const json j = json::array().at(3); });
+  EXPECT_EQ(range, "scene.objects[2]: a value out of range (array index 3 is out of range)");
+  const std::string overflow =
+      described([] { [[maybe_unused]] const json j = json::parse("[-1e999]"); });
+  EXPECT_EQ(overflow, "scene.objects[2]: the number -1e999 is beyond the range of a double");
+  const std::string iterator = described([] {
+    json a = json::array({1}), b = json::array({2});
+    a.erase(b.begin());
+  });
+  EXPECT_EQ(iterator.rfind("scene.objects[2]: an invalid position (iterator does not fit", 0), 0u)
+      << iterator;
+  const std::string other = described([] {
+    [[maybe_unused]] const json j =
+        json::object().patch(json::parse(R"([{"op": "test", "path": "/a", "value": 1}])"));
+  });
+  EXPECT_EQ(other.rfind("scene.objects[2]: a JSON error (", 0), 0u) << other;
+  EXPECT_NE(other.find("unsuccessful"), std::string::npos) << other;
+}
 
 }  // namespace
 }  // namespace shadowvol

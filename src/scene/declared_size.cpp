@@ -1,0 +1,177 @@
+#include "scene/declared_size.h"
+
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace shadowvol {
+namespace {
+
+constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
+
+// Saturating: a sum or product past 64 bits is more than any file holds.
+std::uint64_t add(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t r;
+  return __builtin_add_overflow(a, b, &r) ? kMax : r;
+}
+std::uint64_t mul(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t r;
+  return __builtin_mul_overflow(a, b, &r) ? kMax : r;
+}
+
+// A count as written; one too large for 64 bits reads as the most there is.
+bool parse_count(std::string_view text, std::uint64_t& out) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+  if (error == std::errc::result_out_of_range) out = kMax;
+  return end == text.data() + text.size() && (error == std::errc{} || out == kMax);
+}
+
+std::vector<std::string_view> tokens_of(std::string_view line) {
+  std::vector<std::string_view> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+    if (i > start) tokens.push_back(line.substr(start, i - start));
+  }
+  return tokens;
+}
+
+// The least bytes of data a header declares, where its counts are (header_bytes, the header's
+// own length), and the counts in words for the message.
+struct Declared {
+  std::uint64_t least_bytes = 0;
+  std::uint64_t header_bytes = 0;
+  std::string counts;
+};
+
+int ply_type_size(std::string_view type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
+      type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+// ASCII data: every value a character at least, each followed by a separator but the last.
+std::uint64_t ascii_bytes(std::uint64_t values) { return values == 0 ? 0 : mul(values, 2) - 1; }
+
+bool ply_header(std::string_view text, Declared& out) {
+  struct Element {
+    std::string_view name;
+    std::uint64_t count = 0;
+    std::uint64_t values = 0, bytes = 0;  // least per element: ASCII values, binary bytes
+  };
+  std::vector<Element> elements;
+  bool ascii = false;
+  std::size_t at = 0;
+  for (int line_number = 0;; ++line_number) {
+    const std::size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) return false;  // no end_header where we looked
+    const auto tokens = tokens_of(text.substr(at, end - at));
+    at = end + 1;
+    if (line_number == 0) {
+      if (tokens.size() != 1 || tokens[0] != "ply") return false;
+      continue;
+    }
+    if (tokens.empty()) continue;
+    if (tokens[0] == "end_header") break;
+    if (tokens[0] == "format" && tokens.size() >= 2) {
+      ascii = tokens[1] == "ascii";
+    } else if (tokens[0] == "element" && tokens.size() == 3) {
+      Element e{tokens[1]};
+      if (!parse_count(tokens[2], e.count)) return false;
+      elements.push_back(e);
+    } else if (tokens[0] == "property" && !elements.empty()) {
+      Element& e = elements.back();
+      const bool list = tokens.size() == 5 && tokens[1] == "list";
+      if (!list && tokens.size() != 3) return false;
+      const int size = ply_type_size(tokens[list ? 2 : 1]);  // a list: its count's type
+      if (size == 0) return false;
+      e.values += 1;  // a list holds its count at least
+      e.bytes += static_cast<std::uint64_t>(size);
+    }
+  }
+  std::uint64_t values = 0, bytes = 0;
+  for (const Element& e : elements) {
+    values = add(values, mul(e.count, e.values));
+    bytes = add(bytes, mul(e.count, e.bytes));
+    out.counts += (out.counts.empty() ? "element " : ", element ") + std::string(e.name) + " " +
+                  std::to_string(e.count);
+  }
+  out.least_bytes = ascii ? ascii_bytes(values) : bytes;
+  out.header_bytes = at;
+  return true;
+}
+
+// OFF: [ST][C][N][4][n]OFF [dimension] vertices faces edges, then a line a vertex and a face.
+bool off_header(std::string_view text, Declared& out) {
+  std::vector<std::string_view> tokens;
+  std::size_t at = 0;
+  while (tokens.size() < 5 && at < text.size()) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    std::string_view line = text.substr(at, end - at);
+    line = line.substr(0, line.find('#'));
+    if (end == text.size()) return false;  // the header runs past what we read
+    at = end + 1;
+    for (std::string_view t : tokens_of(line)) tokens.push_back(t);
+  }
+  if (tokens.empty()) return false;
+  std::string_view keyword = tokens[0];
+  if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF") return false;
+  std::uint64_t per_vertex = 3;
+  std::string_view prefix = keyword.substr(0, keyword.size() - 3);
+  const auto take = [&](std::string_view flag, std::uint64_t values) {
+    if (!prefix.starts_with(flag)) return;
+    prefix.remove_prefix(flag.size());
+    per_vertex += values;
+  };
+  take("ST", 2);  // texture coordinates
+  take("C", 1);   // a colour: one value at least
+  take("N", 3);   // a normal
+  take("4", 1);   // a homogeneous w
+  const bool dimension = prefix == "n";
+  if (!prefix.empty() && !dimension) return false;
+  std::size_t next = 1;
+  std::uint64_t dims = 3, vertices = 0, faces = 0;
+  if (dimension && !(next < tokens.size() && parse_count(tokens[next++], dims))) return false;
+  if (dims > 3) return false;  // the reader refuses it
+  per_vertex = per_vertex - 3 + dims;
+  if (next + 1 >= tokens.size() || !parse_count(tokens[next], vertices) ||
+      !parse_count(tokens[next + 1], faces))
+    return false;
+  // Each face line holds its vertex count at least.
+  out.least_bytes = ascii_bytes(add(mul(vertices, per_vertex), faces));
+  out.counts = std::to_string(vertices) + " vertices, " + std::to_string(faces) + " faces";
+  out.header_bytes = 0;  // a few bytes: the whole file is the bound, and never too tight
+  return true;
+}
+
+}  // namespace
+
+Expected<void> check_declared_size(const std::filesystem::path& path, std::uintmax_t file_size) {
+  constexpr std::size_t kHeaderBytes = 64 * 1024;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(kHeaderBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  Declared declared;
+  if (!ply_header(head, declared) && !off_header(head, declared)) return {};
+  const std::uint64_t data_bytes =
+      file_size > declared.header_bytes ? file_size - declared.header_bytes : 0;
+  if (declared.least_bytes <= data_bytes) return {};
+  return make_error(path.string() + ": declares more data than the file holds (" + declared.counts +
+                    ": at least " + std::to_string(declared.least_bytes) + " bytes, in a file of " +
+                    std::to_string(file_size) +
+                    " bytes); is the header corrupt or the file cut short?");
+}
+
+}  // namespace shadowvol
