@@ -285,6 +285,12 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
   r->context_ = std::move(context);
   r->settings_ = settings;
   r->info_ = query_info();
+  GLint texture = 0, viewport[2] = {0, 0}, fbo_width = 0, fbo_height = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &fbo_width);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &fbo_height);
+  r->max_image_side_ = std::min({texture, viewport[0], viewport[1], fbo_width, fbo_height});
   using namespace glsl;
   // The count passes' fragment shaders, without and with the strips' fragment test.
   const std::string version = "#version 450 core\n";
@@ -451,6 +457,15 @@ Expected<void> check_frame(const GlSettings& settings, const RenderOptions& opti
         "5.1: volumes built on the GPU do not adapt to it); use --volumes cpu, or --clamp "
         "discrete, which the geometry shader's volumes take");
   return check_settings(settings, options.generator);
+}
+
+Expected<void> GlBackend::supports(const RenderOptions& options) const {
+  if (options.width > max_image_side_ || options.height > max_image_side_)
+    return make_error("image size " + std::to_string(options.width) + "x" +
+                      std::to_string(options.height) + " is more than this OpenGL driver draws (" +
+                      std::to_string(max_image_side_) + " pixels a side); the soft backend draws " +
+                      std::to_string(raster::kMaxViewport));
+  return check_frame(settings_, options);
 }
 
 void GlBackend::finish() { glFinish(); }

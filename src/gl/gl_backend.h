@@ -75,9 +75,8 @@ class GlBackend final : public FrameBackend {
   ~GlBackend() override;
 
   std::string_view name() const override { return "gl"; }
-  Expected<void> supports(const RenderOptions& options) const override {
-    return check_frame(settings_, options);
-  }
+  // check_frame, and an image no larger than the driver's textures and viewports.
+  Expected<void> supports(const RenderOptions& options) const override;
   bool counts_cpu_volumes() const override { return settings_.volumes == VolumePath::cpu; }
   bool can_present() const override { return true; }
   void finish() override;
@@ -138,6 +137,7 @@ class GlBackend final : public FrameBackend {
 
   std::optional<Context> context_;  // first member: destroyed last
   GlSettings settings_;
+  int max_image_side_ = 0;  // the driver's: textures, framebuffers and viewports
   Info info_;
   // [0]: the scene through a vertex shader alone; [1]: through a pass-through geometry shader,
   // to match the depths of geometry-shader volumes (shaders.h).

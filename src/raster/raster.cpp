@@ -101,7 +101,7 @@ struct Setup {
 };
 
 // The nearest integer, ties to even (the default rounding mode), by adding and taking away
-// 1.5 * 2^52: exact for |x| < 2^51, far beyond the guard band's subpixels (2^24), and without
+// 1.5 * 2^52: exact for |x| < 2^51, far beyond the guard band's subpixels (2^25), and without
 // llround's library call (two per vertex of every triangle).
 inline std::int64_t round_to_integer(double x) {
   constexpr double kShifter = 6755399441055744.0;  // 1.5 * 2^52
@@ -306,10 +306,12 @@ struct TileDepthPlane {
 // tell whether any pixel centre of the tile can be inside, and whether all are (then no edge is
 // evaluated per pixel). Then tile_test(hi-z bounds, the triangle's depth range over the tile)
 // gives the tile's TileVerdict. Pixels are then tested a tile row at a time with 32-bit edge
-// functions: within a tile that an edge cuts, E = E0 + 256 k, with k = dx j - dy i below 2^28,
-// so E >= 0 exactly when floor(E0 / 256) + k >= 0, and floor(E0 / 256) is itself below 2^28
-// there. `work`: the band's TileWork entries, or null to record none.
-// A ScreenStrip in pixels: s at the centre of pixel (px, py) is ds_dx px + ds_dy py + s0.
+// functions: within a tile that an edge cuts, E = E0 + 256 k, with k = dx j - dy i for i, j < 8
+// and |dx|, |dy| < 2^25 (raster.h), so |k| < 14 * 2^25 < 2^29; E >= 0 exactly when
+// floor(E0 / 256) + k >= 0, and floor(E0 / 256), the edge within a tile's reach of the tile's
+// first pixel, is below 2^29 there too: the sum stays below 2^30. `work`: the band's TileWork
+// entries, or null to record none. A ScreenStrip in pixels: s at the centre of pixel (px, py) is
+// ds_dx px + ds_dy py + s0.
 struct StripInPixels {
   double ds_dx = 0, ds_dy = 0, s0 = 0;
   float lo = -INFINITY, hi = INFINITY;

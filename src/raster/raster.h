@@ -37,14 +37,15 @@
 
 namespace shadowvol::raster {
 
-// 1/256 pixel: edge functions are products of two coordinate differences, each below
-// 2^(15 + 8 + 1) = 2^24 subpixels within the guard band, so they fit in 64-bit integers exactly.
+// 1/256 pixel. The guard band, in units of half the viewport, keeps snapped coordinates within
+// 8 viewports' span: below 2^17 pixels, 2^25 subpixels, for viewports up to 16384 = 2^14 pixels
+// a side. So coordinate differences are below 2^25, edge functions (products of two) below 2^51
+// in 64-bit integers, exactly; and the per-pixel 32-bit edge functions of raster.cpp's tile test
+// below 2^30 (see there).
 inline constexpr int kSubpixelBits = 8;
 inline constexpr int kSubpixels = 1 << kSubpixelBits;
-// The guard band, in units of half the viewport: snapped coordinates stay below 2^15 pixels for
-// viewports up to 4096 pixels wide.
 inline constexpr float kGuardBand = 8.0f;
-inline constexpr int kMaxViewport = 4096;
+inline constexpr int kMaxViewport = 16384;
 // Tiles of 8 x 8 pixels, as in Laine 2005 §7 (per-tile culling, per-tile depth bounds).
 inline constexpr int kTileSize = 8;
 

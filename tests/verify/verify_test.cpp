@@ -21,6 +21,7 @@
 #include "scene/scene_io.h"
 #include "test_meshes.h"
 #include "trace/reference.h"
+#include "reference_check.h"
 #include "verify/verify.h"
 
 namespace shadowvol {
@@ -332,6 +333,28 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
             "directional, nonmanifold, glass, knight, knights16, robots, corridor, tree, "
             "tree-decomposed, city, city-above, night-street (city:N and city-above:N: a city of N "
             "buildings; night-street:N: N lamps)");
+}
+
+// Posters and 8K previews: the rasterizer's fixed point holds to kMaxViewport on either side
+// (raster.h's derivation), exactly, and one pixel more is refused.
+TEST(ImageSize, TheLargestSidesMatchTheReference) {
+  static_assert(raster::kMaxViewport >= 16384);
+  auto renderer = testing::renderer_for(Backend::soft);
+  ASSERT_TRUE(renderer);
+  const Scene scene = *builtin_scene("knight");
+  for (const auto& [w, h] :
+       {std::pair{raster::kMaxViewport, 64}, std::pair{64, raster::kMaxViewport}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    RenderOptions options;
+    options.width = w, options.height = h;
+    ASSERT_TRUE(check_options(options).ok());
+    testing::render_checked(*renderer, scene, options);
+  }
+  RenderOptions past;
+  past.width = raster::kMaxViewport + 1;
+  ASSERT_FALSE(check_options(past).ok());
+  EXPECT_EQ(check_options(past).error().message,
+            "image size 16385x540 is outside 1x1 .. 16384x16384");
 }
 
 TEST(SceneFiles, TheShippedExampleMatchesTheReference) {
