@@ -1,6 +1,7 @@
 // shadowvol render: a scene with exact shadows to a PNG, and optionally the pictures of what the
 // passes did (the count passes' work per tile, the light that reaches each surface).
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include "cli.h"
 #include "image_file.h"
 #include "render/frame_json.h"
+#include "render/frame_outputs.h"
 #include "render/heatmap.h"
 #include "render/light_map.h"
 
@@ -25,7 +27,20 @@ struct RenderArgs {
   int frames = 1;
   std::string heatmap;    // PNG of the count passes' work per tile; soft backend
   std::string light_map;  // PNG of the light that reaches each surface
+  std::string mask;       // per light a grey PNG: lit, shadowed, facing away or nothing
+  std::string depth;      // PFM of the view depth
+  std::string ids;        // PNG of the object ids
+  int samples = 1;        // per pixel of the picture (--out)
 };
+
+// F.png for one light, F-L.png for light L of several.
+std::string mask_path(const std::string& path, std::size_t light, std::size_t lights) {
+  if (lights == 1) return path;
+  const std::filesystem::path p(path);
+  return (p.parent_path() /
+          (p.stem().string() + "-" + std::to_string(light) + p.extension().string()))
+      .string();
+}
 
 void print_stats(const FrameStats& s, const RenderOptions& options, bool counts_work) {
   std::printf(
@@ -113,8 +128,16 @@ int run(const RenderArgs& args) {
   options.show_volumes = args.show_volumes;
   options.tile_work = !args.heatmap.empty();
   options.count_fill = args.stats || args.json;
+  const auto side = samples_side(args.samples, options.width, options.height);
+  if (!side) return fail("--samples: " + side.error().message);
   auto renderer = make_frame_renderer(*resolved, options);
   if (!renderer) return fail(renderer.error().message);
+  // The supersampled picture: the last frame once more, at k times the size.
+  RenderOptions sampled = options;
+  sampled.width *= *side, sampled.height *= *side;
+  sampled.count_fill = sampled.tile_work = false;
+  if (auto ok = (*renderer)->backend().supports(sampled); !ok)
+    return fail("--samples: " + ok.error().message);
 
   Frame frame;
   StatusLine status;
@@ -123,12 +146,44 @@ int run(const RenderArgs& args) {
       status.show("frame " + std::to_string(i + 1) + " of " + std::to_string(args.frames));
     (*renderer)->render(scene_at_frame(scene, i), options, frame);
   }
+  Image picture = frame.image;
+  if (*side > 1) {
+    status.show(std::to_string(args.samples) + " samples per pixel");
+    Frame samples;
+    (*renderer)->render(scene_at_frame(scene, args.frames - 1), sampled, samples);
+    picture = resolve_samples(samples.image, *side);
+  }
   status.clear();
-  if (auto ok = write_png(args.out, frame.image); !ok) return fail(ok.error().message);
-  (args.json ? std::cerr : std::cout)
-      << "wrote " << args.out << " (" << scene.name << ", " << frame.image.width << "x"
-      << frame.image.height << ", " << method_label(options) << ", "
-      << (*renderer)->backend().name() << ")\n";
+  std::FILE* said = args.json ? stderr : stdout;
+  if (auto ok = write_png(args.out, picture); !ok) return fail(ok.error().message);
+  std::fprintf(
+      said, "wrote %s (%s, %dx%d, %s, %s%s)\n", args.out.c_str(), scene.name.c_str(), picture.width,
+      picture.height, method_label(options).c_str(),
+      std::string((*renderer)->backend().name()).c_str(),
+      *side > 1 ? (", " + std::to_string(args.samples) + " samples per pixel").c_str() : "");
+  const Scene last = scene_at_frame(scene, args.frames - 1);
+  if (!args.mask.empty()) {
+    for (std::size_t l = 0; l < last.lights.size(); ++l) {
+      const std::string path = mask_path(args.mask, l, last.lights.size());
+      if (auto ok = write_png(path, shadow_mask(last, frame, l)); !ok)
+        return fail(ok.error().message);
+      std::fprintf(said,
+                   "wrote %s (light %zu's shadow mask: 255 lit, 0 in shadow, 128 facing away "
+                   "or no surface)\n",
+                   path.c_str(), l);
+    }
+  }
+  if (!args.depth.empty()) {
+    if (auto ok = write_pfm(args.depth, view_depth(last, frame)); !ok)
+      return fail(ok.error().message);
+    std::fprintf(said, "wrote %s (depth along the view axis, scene units; +inf: no surface)\n",
+                 args.depth.c_str());
+  }
+  if (!args.ids.empty()) {
+    if (auto ok = write_png(args.ids, object_ids(frame)); !ok) return fail(ok.error().message);
+    std::fprintf(said, "wrote %s (object index + 1 in 24 bits, red the low byte; 0: none)\n",
+                 args.ids.c_str());
+  }
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
     if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
@@ -186,6 +241,20 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--light-map", args->light_map,
                   "Also write a PNG of the light intensity map: the light that reaches each "
                   "surface through the casters (coloured where they are transparent)");
+  cmd->add_option("--mask", args->mask,
+                  "Also write each light's shadow mask, an 8-bit grey PNG (F.png for one light, "
+                  "F-L.png for light L of several): 255 lit, 0 in shadow, 128 where the surface "
+                  "faces away from the light or there is none");
+  cmd->add_option("--depth", args->depth,
+                  "Also write the depth along the view axis (scene units) as a PFM; +infinity "
+                  "where no surface is seen");
+  cmd->add_option("--ids", args->ids,
+                  "Also write a PNG of the object seen at each pixel: its index + 1 in 24 bits "
+                  "(red the low byte), 0 where none");
+  cmd->add_option("--samples", args->samples,
+                  "Samples per pixel of the picture (--out): 1, 4, 9, 16, 25, 36, 49 or 64, a k x "
+                  "k grid in each pixel; masks, depth and ids stay exact at the pixel centres")
+      ->capture_default_str();
   cmd->add_option("--frames", args->frames,
                   "Render frames 0 .. N-1 of the scene's animation; write the last")
       ->capture_default_str();
