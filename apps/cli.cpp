@@ -123,8 +123,11 @@ auto parsed(const char* option, const std::string& value, Parse&& parse) -> decl
 }  // namespace
 
 Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scene) {
+  StatusLine status;
+  if (!scene) status.show("reading " + args.scene);
   auto loaded =
       scene ? Expected<LoadedScene>(LoadedScene{std::move(*scene), {}}) : load_scene(args.scene);
+  status.clear();
   if (!loaded) return loaded.error();
   for (const std::string& w : loaded->warnings) warn(w);
   auto method = parsed("--method", args.method, parse_method);

@@ -33,10 +33,17 @@ int run(const VerifyArgs& args) {
   auto renderer = make_frame_renderer(*resolved, options);
   if (!renderer) return fail(renderer.error().message);
   const std::string backend((*renderer)->backend().name());
+  StatusLine status;  // on a terminal only: what verify is doing, and how far along
+  const Progress progress = [&status](std::string_view doing, float fraction) {
+    status.show(std::string(doing) + " " + std::to_string(int(fraction * 100.0f)) + "%");
+  };
+  status.show("rendering " + scene.name + " on the " + backend + " backend");
   const Frame frame = (*renderer)->render(scene, options);
-  auto reference = trace_reference(scene, options.width, options.height);
+  auto reference = trace_reference(scene, options.width, options.height, progress);
   if (!reference) return fail(reference.error().message);
-  const Comparison c = compare(frame, *reference);
+  status.show("comparing");
+  const Comparison c = compare(frame, *reference, progress);
+  status.clear();
   const bool glass = has_transparent_casters(scene);
   if (c.pixels_compared == 0)  // a comparison of nothing proves nothing
     return fail(

@@ -9,6 +9,8 @@
 #include <tuple>
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -269,7 +271,9 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
 
 std::string ReferenceTracer::error() const { return device_error(state_->device.get()); }
 
-Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int height) {
+Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int height,
+                                         const Progress& progress) {
+  if (progress) progress("building the reference's BVH (Embree)", 0.0f);
   auto tracer = ReferenceTracer::create(scene, width, height);
   if (!tracer) return tracer.error();
   ReferenceFrame ref;
@@ -295,13 +299,22 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
   };
   size(ref);
   if (glass) size(ref.glass);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const std::size_t p = static_cast<std::size_t>(y) * width + x;
-      const ReferenceSample s = (*tracer)->sample(x + 0.5, y + 0.5);
-      put(ref, p, s);
-      if (glass) put(ref.glass, p, s.glass);
-    }
+  // Rows in parallel, a slice of them at a time so that progress is said between slices.
+  const int slice = std::max(1, height / 64);
+  for (int y0 = 0; y0 < height; y0 += slice) {
+    if (progress) progress("tracing the reference", float(y0) / float(height));
+    tbb::parallel_for(tbb::blocked_range<int>(y0, std::min(height, y0 + slice)),
+                      [&](const tbb::blocked_range<int>& rows) {
+                        for (int y = rows.begin(); y < rows.end(); ++y)
+                          for (int x = 0; x < width; ++x) {
+                            const std::size_t p = static_cast<std::size_t>(y) * width + x;
+                            const ReferenceSample s = (*tracer)->sample(x + 0.5, y + 0.5);
+                            put(ref, p, s);
+                            if (glass) put(ref.glass, p, s.glass);
+                          }
+                      });
+  }
+  if (progress) progress("tracing the reference", 1.0f);
   if (std::string e = (*tracer)->error(); !e.empty()) return make_error(e + " while tracing");
   ref.tracer = std::move(*tracer);
   return ref;

@@ -10,8 +10,10 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -77,8 +79,13 @@ struct ReferenceFrame : ReferenceLayer {
   std::shared_ptr<const ReferenceTracer> tracer;
 };
 
-// Traces the scene at width x height through scene.camera, at every pixel centre. Fails if
-// Embree cannot be set up.
-Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int height);
+// Long work reports what it is doing and the fraction of it done, in [0, 1], now and then, on the
+// calling thread (whatever threads do the work).
+using Progress = std::function<void(std::string_view doing, float fraction)>;
+
+// Traces the scene at width x height through scene.camera, at every pixel centre, rows in
+// parallel. Fails if Embree cannot be set up.
+Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int height,
+                                         const Progress& progress = {});
 
 }  // namespace shadowvol

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cassert>
+#include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 
 namespace shadowvol {
@@ -44,9 +47,24 @@ bool boundary_between_centres(const ReferenceTracer& tracer, int x, int y, std::
 
 // One layer of the frame against the same layer of the reference; `pick` takes that layer's
 // surface out of a reference sample.
+// A mismatch counted: within the band or outside it.
+void settle(Comparison& c, std::size_t p, bool band, float error) {
+  c.mismatched_outside_band += !band;
+  if (!band) c.max_light_error_outside_band = std::max(c.max_light_error_outside_band, error);
+  c.verdict[p] = std::max<std::uint8_t>(c.verdict[p], band ? 1 : 2);
+}
+
+struct Suspect {
+  int x, y;
+  std::size_t light;
+  float error;
+};
+
 template <class Pick>
 void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, int h,
-                   const ReferenceTracer* tracer, Pick pick, Comparison& c) {
+                   const ReferenceTracer* tracer, Pick pick, const Progress& progress,
+                   Comparison& c) {
+  std::vector<Suspect> suspects;
   for (std::size_t l = 0; l < ref.shadowed.size(); ++l) {
     const std::vector<std::uint8_t>& shadow = ref.shadowed[l];
     const std::vector<std::uint8_t>& facing = ref.faces_light[l];
@@ -79,17 +97,38 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
           continue;
         }
         ++c.mismatched;
-        if (!band && tracer != nullptr) band = boundary_between_centres(*tracer, x, y, l, pick);
-        c.mismatched_outside_band += !band;
-        if (!band) c.max_light_error_outside_band = std::max(c.max_light_error_outside_band, error);
-        c.verdict[p] = std::max<std::uint8_t>(c.verdict[p], band ? 1 : 2);
+        if (!band && tracer != nullptr) {
+          suspects.push_back({x, y, l, error});  // looked at between centres below
+          continue;
+        }
+        settle(c, p, band, error);
       }
+  }
+  // Mismatches with no boundary among their neighbours: the reference traced between the
+  // centres, a thousand samples each, in parallel.
+  std::vector<std::uint8_t> bands(suspects.size(), 0);
+  const std::size_t step = std::max<std::size_t>(1, suspects.size() / 64);
+  for (std::size_t s0 = 0; s0 < suspects.size(); s0 += step) {
+    if (progress)
+      progress("tracing between the centres of " + std::to_string(suspects.size()) + " mismatches",
+               float(s0) / float(suspects.size()));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(s0, std::min(suspects.size(), s0 + step)),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                          const Suspect& m = suspects[i];
+                          bands[i] = boundary_between_centres(*tracer, m.x, m.y, m.light, pick);
+                        }
+                      });
+  }
+  for (std::size_t i = 0; i < suspects.size(); ++i) {
+    const Suspect& m = suspects[i];
+    settle(c, static_cast<std::size_t>(m.y) * w + m.x, bands[i] != 0, m.error);
   }
 }
 
 }  // namespace
 
-Comparison compare(const Frame& frame, const ReferenceFrame& ref) {
+Comparison compare(const Frame& frame, const ReferenceFrame& ref, const Progress& progress) {
   const int w = ref.width, h = ref.height;
   const std::size_t pixels = static_cast<std::size_t>(w) * h;
   assert(frame.object.size() == pixels && frame.shadowed.size() == ref.shadowed.size());
@@ -99,11 +138,11 @@ Comparison compare(const Frame& frame, const ReferenceFrame& ref) {
   const ReferenceTracer* tracer = ref.tracer.get();
   compare_layer(
       frame, ref, w, h, tracer,
-      [](const ReferenceSample& s) -> const ReferenceSurface& { return s; }, c);
+      [](const ReferenceSample& s) -> const ReferenceSurface& { return s; }, progress, c);
   if (!ref.glass.object.empty())
     compare_layer(
         frame.glass, ref.glass, w, h, tracer,
-        [](const ReferenceSample& s) -> const ReferenceSurface& { return s.glass; }, c);
+        [](const ReferenceSample& s) -> const ReferenceSurface& { return s.glass; }, progress, c);
   return c;
 }
 

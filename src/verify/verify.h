@@ -42,8 +42,10 @@ struct Comparison {
   std::vector<std::uint8_t> verdict;
 };
 
-// Frame and reference must have the same size and the same lights.
-Comparison compare(const Frame& frame, const ReferenceFrame& reference);
+// Frame and reference must have the same size and the same lights. The samples between pixel
+// centres are traced in parallel; `progress` hears of them where there are many.
+Comparison compare(const Frame& frame, const ReferenceFrame& reference,
+                   const Progress& progress = {});
 
 // The rendered image, greyed, with mismatches outside the band in red and inside it in yellow.
 Image diff_image(const Frame& frame, const Comparison& comparison);

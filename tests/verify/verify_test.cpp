@@ -14,6 +14,7 @@
 
 #include "backend/backend.h"
 #include "core/shapes.h"
+#include "reference_check.h"
 #include "render/light_map.h"
 #include "render/shading.h"
 #include "scene/mesh_io.h"
@@ -21,7 +22,6 @@
 #include "scene/scene_io.h"
 #include "test_meshes.h"
 #include "trace/reference.h"
-#include "reference_check.h"
 #include "verify/verify.h"
 
 namespace shadowvol {
@@ -333,6 +333,23 @@ TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
             "directional, nonmanifold, glass, knight, knights16, robots, corridor, tree, "
             "tree-decomposed, city, city-above, night-street (city:N and city-above:N: a city of N "
             "buildings; night-street:N: N lamps)");
+}
+
+// Long verification says what it is doing: the BVH, then the rows traced, in order, to the end.
+TEST(Reference, ReportsWhatItIsDoingAndHowFar) {
+  const Scene scene = *builtin_scene("demo");
+  std::vector<std::pair<std::string, float>> heard;
+  auto ref = trace_reference(scene, 96, 54, [&](std::string_view doing, float fraction) {
+    heard.emplace_back(std::string(doing), fraction);
+  });
+  ASSERT_TRUE(ref.ok());
+  ASSERT_GT(heard.size(), 10u);
+  EXPECT_EQ(heard.front().first, "building the reference's BVH (Embree)");
+  EXPECT_EQ(heard.back(), (std::pair<std::string, float>{"tracing the reference", 1.0f}));
+  for (std::size_t i = 2; i < heard.size(); ++i) {
+    EXPECT_EQ(heard[i].first, "tracing the reference");
+    EXPECT_GE(heard[i].second, heard[i - 1].second);
+  }
 }
 
 // Posters and 8K previews: the rasterizer's fixed point holds to kMaxViewport on either side
