@@ -269,7 +269,7 @@ bool write_suite_outputs(const std::string& json_path, const std::string& json,
     return false;
   }
   if (!plot_path.empty()) {
-    if (auto ok = write_png(plot_path, draw_chart(chart)); !ok) {
+    if (auto ok = write_chart(plot_path, chart); !ok) {
       std::cerr << "shadowvol: error: " << ok.error().message << "\n";
       return false;
     }

@@ -233,7 +233,7 @@ int bench(const BenchArgs& args) {
   }
   if (json) std::cout << out.dump(2) << "\n";
   if (!args.plot.empty()) {
-    if (auto ok = write_png(args.plot, draw_chart(chart)); !ok) return fail(ok.error().message);
+    if (auto ok = write_chart(args.plot, chart); !ok) return fail(ok.error().message);
     std::fprintf(json ? stderr : stdout, "wrote %s (the frames against the baselines)\n",
                  args.plot.c_str());
   }
@@ -435,7 +435,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "With --suite: write one row per scene, method and frame to this file");
   cmd->add_option("--plot", args->plot,
                   "With --suite: draw every counter's per-frame series, per scene and method, to "
-                  "this PNG; with --versus: each scene's frames against the baselines'");
+                  "this PNG (or SVG, where the name ends in .svg); with --versus: each scene's "
+                  "frames against the baselines'");
   cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

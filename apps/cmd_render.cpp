@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "image_file.h"
+#include "plot.h"
 #include "render/frame_json.h"
 #include "render/frame_outputs.h"
 #include "render/heatmap.h"
@@ -186,7 +187,8 @@ int run(const RenderArgs& args) {
   }
   if (options.tile_work) {
     const Heatmap map = tile_work_heatmap(frame);
-    if (auto ok = write_png(args.heatmap, map.image); !ok) return fail(ok.error().message);
+    if (auto ok = write_png(args.heatmap, labelled_heatmap(map)); !ok)
+      return fail(ok.error().message);
     std::fprintf(args.json ? stderr : stdout,
                  "wrote %s (pixels processed | pixels updated per tile; brightest: %.1f passes "
                  "per pixel)\n",

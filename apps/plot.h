@@ -1,8 +1,8 @@
-// shadowvol app: line charts as images, for `bench --suite spsv --plot` (Laine 2005 Fig. 6).
+// shadowvol app: line charts, for `bench --plot` and the suites' (Laine 2005 Fig. 6).
 //
 // Owns the layout of a grid of panels, each a set of series over frames with its own y scale
-// (from 0, in round steps, labelled in K and M), a shared legend and a title. Pure: returns the
-// image; apps/image_file.h writes it.
+// (from 0, in round steps, labelled in K and M), a shared legend and a title, drawn with cairo
+// (canvas.h) as an image or straight to an SVG.
 #pragma once
 
 #include <string>
@@ -10,6 +10,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/expected.h"
+#include "render/heatmap.h"
 #include "render/renderer.h"
 
 namespace shadowvol {
@@ -34,5 +36,11 @@ struct Chart {
 };
 
 Image draw_chart(const Chart& chart);
+// An SVG where `path` ends in .svg, else a PNG; the error names the path.
+Expected<void> write_chart(const std::string& path, const Chart& chart);
+
+// The heatmap (render/heatmap.h) with its words: each panel's title above it and the scale's
+// ends under its bar ("0" and the passes per pixel its brightest colour means).
+Image labelled_heatmap(const Heatmap& map);
 
 }  // namespace shadowvol

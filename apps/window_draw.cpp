@@ -1,87 +1,78 @@
 #include "window_draw.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
 #include <epoxy/gl.h>
-#include <stb/stb_easy_font.h>
+
+#include "canvas.h"
 
 namespace shadowvol {
 
 Expected<TextOverlay> TextOverlay::create() {
+  // A quad over the text's pixels (gl_VertexID 0..3 as a strip), its picture blended over.
   auto program = gl::link_program("text", {{GL_VERTEX_SHADER, R"(#version 450 core
-layout(location = 0) in vec2 position;  // pixels, y down
-layout(location = 1) in vec4 colour;
-layout(location = 0) uniform vec2 viewport;
-out vec4 tint;
+layout(location = 0) uniform vec4 rect;  // x, y, width, height in pixels, y down
+layout(location = 1) uniform vec2 viewport;
+out vec2 uv;
 void main() {
-  tint = colour;
-  gl_Position = vec4(position.x / viewport.x * 2.0 - 1.0, 1.0 - position.y / viewport.y * 2.0, 0.0, 1.0);
+  uv = vec2(gl_VertexID & 1, gl_VertexID >> 1);
+  vec2 p = rect.xy + uv * rect.zw;
+  gl_Position = vec4(p.x / viewport.x * 2.0 - 1.0, 1.0 - p.y / viewport.y * 2.0, 0.0, 1.0);
 }
 )"},
                                            {GL_FRAGMENT_SHADER, R"(#version 450 core
-in vec4 tint;
+in vec2 uv;
+layout(binding = 0) uniform sampler2D text;
 layout(location = 0) out vec4 colour;
-void main() { colour = tint; }
+void main() { colour = texture(text, uv); }
 )"}});
   if (!program) return program.error();
   TextOverlay t;
   t.program_ = std::move(*program);
+  t.vao_ = gl::make_vertex_array();
   return t;
 }
 
 void TextOverlay::draw(const std::vector<std::string>& lines, int width, int height) {
-  struct Vertex {
-    float x, y, z;
-    unsigned char rgba[4];
-  };
-  std::vector<Vertex> quads;
-  std::vector<Vertex> scratch(4 * 2000);
-  const float scale = width >= 1200 ? 2.0f : 1.5f;
-  float y = 6.0f;
-  for (const std::string& line : lines) {
-    std::vector<char> text(line.begin(), line.end());
-    text.push_back('\0');
-    for (int shadow = 1; shadow >= 0; --shadow) {  // a dark copy behind, for contrast
-      unsigned char colour[4] = {255, 255, 255, 255};
-      if (shadow) colour[0] = colour[1] = colour[2] = 0;
-      const int n = stb_easy_font_print(0, 0, text.data(), colour, scratch.data(),
-                                        static_cast<int>(scratch.size() * sizeof(Vertex)));
-      for (int i = 0; i < 4 * n; ++i) {
-        Vertex v = scratch[static_cast<std::size_t>(i)];
-        v.x = 8.0f + v.x * scale + shadow;
-        v.y = y + v.y * scale + shadow;
-        quads.push_back(v);
-      }
-    }
-    y += 12.0f * scale;
+  if (lines.empty()) return;
+  // The lines drawn with cairo on a transparent picture: white, over a dark shadow for contrast.
+  const double size = width >= 1200 ? 18.0 : 14.0, step = size * 1.3;
+  Canvas measure = Canvas::image(1, 1, glm::vec3(0.0f), 0.0f);
+  double widest = 0.0;
+  for (const std::string& line : lines) widest = std::max(widest, measure.text_width(line, size));
+  const int w = static_cast<int>(std::ceil(widest)) + 4;
+  const int h = static_cast<int>(std::ceil(step * lines.size())) + 4;
+  Canvas canvas = Canvas::image(w, h, glm::vec3(0.0f), 0.0f);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    canvas.text(2, 2 + step * i, lines[i], size, glm::vec3(0.0f));
+    canvas.text(1, 1 + step * i, lines[i], size, glm::vec3(1.0f));
   }
-  std::vector<Vertex> triangles;
-  for (std::size_t q = 0; q + 3 < quads.size(); q += 4)
-    for (int k : {0, 1, 2, 0, 2, 3}) triangles.push_back(quads[q + static_cast<std::size_t>(k)]);
-  if (triangles.empty()) return;
-  buffer_ = gl::make_buffer();
-  glNamedBufferStorage(buffer_.get(), static_cast<GLsizeiptr>(triangles.size() * sizeof(Vertex)),
-                       triangles.data(), 0);
-  if (!vao_) vao_ = gl::make_vertex_array();
-  glVertexArrayVertexBuffer(vao_.get(), 0, buffer_.get(), 0, sizeof(Vertex));
-  glVertexArrayAttribFormat(vao_.get(), 0, 2, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribFormat(vao_.get(), 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(Vertex, rgba));
-  for (GLuint a : {0u, 1u}) {
-    glVertexArrayAttribBinding(vao_.get(), a, 0);
-    glEnableVertexArrayAttrib(vao_.get(), a);
-  }
+  const Image picture = canvas.pixels();
+  texture_ = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(texture_.get(), 1, GL_RGBA8, w, h);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(texture_.get(), 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
+                      picture.rgba.data());
+  glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_STENCIL_TEST);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glUseProgram(program_.get());
-  glUniform2f(0, static_cast<float>(width), static_cast<float>(height));
+  glUniform4f(0, 8.0f, 6.0f, static_cast<float>(w), static_cast<float>(h));
+  glUniform2f(1, static_cast<float>(width), static_cast<float>(height));
+  glBindTextureUnit(0, texture_.get());
   glBindVertexArray(vao_.get());
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size()));
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
   glBindVertexArray(0);
   glUseProgram(0);
+  glDisable(GL_BLEND);
 }
 
 void show_image(const Image& image) {

@@ -13,14 +13,15 @@
 
 namespace shadowvol {
 
-// Text in the top-left corner: stb_easy_font's quads, drawn as triangles in pixel units.
+// Text in the top-left corner: the lines drawn with cairo (canvas.h) into a texture, blended
+// over the window.
 class TextOverlay {
  public:
   static Expected<TextOverlay> create();
   void draw(const std::vector<std::string>& lines, int width, int height);
 
  private:
-  gl::Object program_, buffer_, vao_;
+  gl::Object program_, texture_, vao_;
 };
 
 // Copies an image (row 0 at the top) to the window's framebuffer.

@@ -395,7 +395,10 @@ void raster(const Target& target, const Setup& s, int band, Counters& counters, 
                         plane.at(lanes - 1, rows - 1)};
     const float zlo = std::max(zlo_triangle, std::min({c[0], c[1], c[2], c[3]}));
     const float zhi = std::min(zhi_triangle, std::max({c[0], c[1], c[2], c[3]}));
-    const auto [verdict, rule] = tile_test(tx, band, zlo, zhi);
+    // (Not a structured binding: clang before 16 cannot capture one in the lambda below.)
+    const TileDecision tested = tile_test(tx, band, zlo, zhi);
+    const TileVerdict verdict = tested.verdict;
+    const CountRule rule = tested.rule;
     if (verdict == TileVerdict::skip) {
       ++counters.tiles_skipped;
       continue;

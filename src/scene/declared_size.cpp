@@ -1,6 +1,7 @@
 #include "scene/declared_size.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <fstream>
 #include <limits>
@@ -24,11 +25,13 @@ std::uint64_t mul(std::uint64_t a, std::uint64_t b) {
   return __builtin_mul_overflow(a, b, &r) ? kMax : r;
 }
 
-// A count as written; one too large for 64 bits reads as the most there is.
-bool parse_count(std::string_view text, std::uint64_t& out) {
+// A count as readers take it: its leading digits, 0 where there are none (as strtoul reads);
+// one too large for 64 bits reads as the most there is.
+std::uint64_t parse_count(std::string_view text) {
+  std::uint64_t out = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-  if (error == std::errc::result_out_of_range) out = kMax;
-  return end == text.data() + text.size() && (error == std::errc{} || out == kMax);
+  if (error == std::errc::result_out_of_range) return kMax;
+  return error == std::errc{} ? out : 0;
 }
 
 std::vector<std::string_view> tokens_of(std::string_view line) {
@@ -73,11 +76,12 @@ bool ply_header(std::string_view text, Declared& out) {
   std::vector<Element> elements;
   bool ascii = false;
   std::size_t at = 0;
-  for (int line_number = 0;; ++line_number) {
-    const std::size_t end = text.find('\n', at);
-    if (end == std::string_view::npos) return false;  // no end_header where we looked
+  // Lenient as readers are: a line it cannot make out adds nothing, but never hides the counts
+  // of the lines it can; a header with no end_header where we looked ends there.
+  for (int line_number = 0; at < text.size(); ++line_number) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
     const auto tokens = tokens_of(text.substr(at, end - at));
-    at = end + 1;
+    at = std::min(end + 1, text.size());
     if (line_number == 0) {
       if (tokens.size() != 1 || tokens[0] != "ply") return false;
       continue;
@@ -86,26 +90,27 @@ bool ply_header(std::string_view text, Declared& out) {
     if (tokens[0] == "end_header") break;
     if (tokens[0] == "format" && tokens.size() >= 2) {
       ascii = tokens[1] == "ascii";
-    } else if (tokens[0] == "element" && tokens.size() == 3) {
-      Element e{tokens[1]};
-      if (!parse_count(tokens[2], e.count)) return false;
-      elements.push_back(e);
-    } else if (tokens[0] == "property" && !elements.empty()) {
+    } else if (tokens[0] == "element" && tokens.size() >= 3) {
+      elements.push_back(Element{tokens[1], parse_count(tokens[2])});
+    } else if (tokens[0] == "property" && !elements.empty() && tokens.size() >= 2) {
       Element& e = elements.back();
-      const bool list = tokens.size() == 5 && tokens[1] == "list";
-      if (!list && tokens.size() != 3) return false;
-      const int size = ply_type_size(tokens[list ? 2 : 1]);  // a list: its count's type
-      if (size == 0) return false;
+      const bool list = tokens[1] == "list" && tokens.size() >= 3;
       e.values += 1;  // a list holds its count at least
-      e.bytes += static_cast<std::uint64_t>(size);
+      // A type it cannot make out is still a byte at least (every PLY type is).
+      e.bytes += static_cast<std::uint64_t>(std::max(1, ply_type_size(tokens[list ? 2 : 1])));
     }
   }
   std::uint64_t values = 0, bytes = 0;
   for (const Element& e : elements) {
-    values = add(values, mul(e.count, e.values));
-    bytes = add(bytes, mul(e.count, e.bytes));
-    out.counts += (out.counts.empty() ? "element " : ", element ") + std::string(e.name) + " " +
-                  std::to_string(e.count);
+    // Even an element without properties takes a byte (a line of its own in ASCII): readers
+    // make an entry for each.
+    values = add(values, mul(e.count, std::max<std::uint64_t>(1, e.values)));
+    bytes = add(bytes, mul(e.count, std::max<std::uint64_t>(1, e.bytes)));
+    std::string name(e.name);  // as a person can read it, whatever bytes the file holds
+    for (char& c : name)
+      if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    out.counts +=
+        (out.counts.empty() ? "element " : ", element ") + name + " " + std::to_string(e.count);
   }
   out.least_bytes = ascii ? ascii_bytes(values) : bytes;
   out.header_bytes = at;
@@ -113,7 +118,7 @@ bool ply_header(std::string_view text, Declared& out) {
 }
 
 // OFF: [ST][C][N][4][n]OFF [dimension] vertices faces edges, then a line a vertex and a face.
-bool off_header(std::string_view text, Declared& out) {
+bool off_header(std::string_view text, bool headerless, Declared& out) {
   std::vector<std::string_view> tokens;
   std::size_t at = 0;
   while (tokens.size() < 5 && at < text.size()) {
@@ -126,7 +131,13 @@ bool off_header(std::string_view text, Declared& out) {
   }
   if (tokens.empty()) return false;
   std::string_view keyword = tokens[0];
-  if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF") return false;
+  if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF") {
+    // The keyword is optional (readers take the counts first in a file named .off).
+    if (!headerless || tokens.size() < 2 || !std::isdigit(static_cast<unsigned char>(keyword[0])))
+      return false;
+    keyword = "OFF";
+    tokens.insert(tokens.begin(), keyword);
+  }
   std::uint64_t per_vertex = 3;
   std::string_view prefix = keyword.substr(0, keyword.size() - 3);
   const auto take = [&](std::string_view flag, std::uint64_t values) {
@@ -141,13 +152,12 @@ bool off_header(std::string_view text, Declared& out) {
   const bool dimension = prefix == "n";
   if (!prefix.empty() && !dimension) return false;
   std::size_t next = 1;
-  std::uint64_t dims = 3, vertices = 0, faces = 0;
-  if (dimension && !(next < tokens.size() && parse_count(tokens[next++], dims))) return false;
+  std::uint64_t dims = 3;
+  if (dimension) dims = next < tokens.size() ? parse_count(tokens[next++]) : 0;
   if (dims > 3) return false;  // the reader refuses it
   per_vertex = per_vertex - 3 + dims;
-  if (next + 1 >= tokens.size() || !parse_count(tokens[next], vertices) ||
-      !parse_count(tokens[next + 1], faces))
-    return false;
+  if (next + 1 >= tokens.size()) return false;
+  const std::uint64_t vertices = parse_count(tokens[next]), faces = parse_count(tokens[next + 1]);
   // Each face line holds its vertex count at least.
   out.least_bytes = ascii_bytes(add(mul(vertices, per_vertex), faces));
   out.counts = std::to_string(vertices) + " vertices, " + std::to_string(faces) + " faces";
@@ -164,7 +174,9 @@ Expected<void> check_declared_size(const std::filesystem::path& path, std::uintm
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   Declared declared;
-  if (!ply_header(head, declared) && !off_header(head, declared)) return {};
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (!ply_header(head, declared) && !off_header(head, extension == ".off", declared)) return {};
   const std::uint64_t data_bytes =
       file_size > declared.header_bytes ? file_size - declared.header_bytes : 0;
   if (declared.least_bytes <= data_bytes) return {};

@@ -117,6 +117,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"absurd_count.ply",
                 "declares more data than the file holds (element vertex 4000000000, element face "
                 "4000000000: at least"},
+        // (Found by fuzzing: a line that cannot be made out hides no count.)
+        BadFile{"absurd_count_garbled.ply",
+                "declares more data than the file holds (element vertex 4000000000, element fc "
+                "0: at least"},
+        BadFile{"absurd_count_mangled.ply",  // (and a type it cannot make out: a byte)
+                "declares more data than the file holds"},
         BadFile{"absurd_count_binary.ply",
                 "(element vertex 3, element face 1000000000: at least 1000000036 bytes, in a "
                 "file of 178 bytes)"},
