@@ -369,7 +369,8 @@ TEST(Renderer, ReusesTheVolumesOfObjectsWhoseLightDidNotMove) {
 TEST(Renderer, OptionsOutsideTheRasterizersLimitsAreRefused) {
   EXPECT_TRUE(check_options({640, 480}).ok());
   EXPECT_FALSE(check_options({0, 480}).ok());
-  EXPECT_FALSE(check_options({640, 5000}).ok());
+  EXPECT_TRUE(check_options({640, raster::kMaxViewport}).ok());
+  EXPECT_FALSE(check_options({640, raster::kMaxViewport + 1}).ok());
   auto method = parse_method("zfast");
   ASSERT_FALSE(method.ok());
   EXPECT_EQ(method.error().message,
