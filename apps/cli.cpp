@@ -93,6 +93,9 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
                   "--cull, --clamp: the side of each light view, in pixels (a cube's faces each)")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--camera", args.camera,
+                  "A mesh file's own camera, by name (glTF, COLLADA, FBX); without it, the file's "
+                  "first camera, or the default stage's where it has none");
   if (with_backend)
     cmd->add_option("--backend", args.backend,
                     "soft (CPU rasterizer), gl (OpenGL 4.5, headless) or auto (gl if a context "
@@ -125,10 +128,12 @@ auto parsed(const char* option, const std::string& value, Parse&& parse) -> decl
 Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scene) {
   StatusLine status;
   if (!scene) status.show("reading " + args.scene);
-  auto loaded =
-      scene ? Expected<LoadedScene>(LoadedScene{std::move(*scene), {}}) : load_scene(args.scene);
+  auto loaded = scene ? Expected<LoadedScene>(LoadedScene{std::move(*scene), {}, {}})
+                      : load_scene(args.scene);
   status.clear();
   if (!loaded) return loaded.error();
+  if (!args.camera.empty())
+    if (auto ok = use_camera(*loaded, args.camera); !ok) return ok.error();
   for (const std::string& w : loaded->warnings) warn(w);
   auto method = parsed("--method", args.method, parse_method);
   if (!method) return method.error();

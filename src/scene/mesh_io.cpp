@@ -5,13 +5,20 @@
 #include <cstdlib>
 #include <exception>
 #include <fstream>
+#include <map>
 #include <sstream>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 #include <assimp/ProgressHandler.hpp>
 
+#include "core/volume.h"
 #include "scene/declared_size.h"
 
 namespace shadowvol {
@@ -75,8 +82,12 @@ struct Gather {
   LoadedMesh* out;
   std::string error;  // the first problem found, empty if none
 
+  // Cameras and lights are placed by their nodes' names: the world and local transforms.
+  std::map<std::string, std::pair<aiMatrix4x4, aiMatrix4x4>> node_transforms;
+
   void node(const aiNode* n, const aiMatrix4x4& parent) {
     const aiMatrix4x4 world = parent * n->mTransformation;
+    node_transforms.emplace(n->mName.C_Str(), std::pair{world, n->mTransformation});
     for (unsigned i = 0; i < n->mNumMeshes; ++i) mesh(scene->mMeshes[n->mMeshes[i]], world);
     for (unsigned i = 0; i < n->mNumChildren; ++i) node(n->mChildren[i], world);
   }
@@ -106,9 +117,120 @@ struct Gather {
                   std::to_string(m->mNumVertices);
         dst.indices.push_back(static_cast<std::uint32_t>(base + face.mIndices[k]));
       }
+      out->triangle_material.push_back(m->mMaterialIndex);
     }
   }
+
+  aiMatrix4x4 world_of(const aiString& name) const {
+    const auto it = node_transforms.find(name.C_Str());
+    return it == node_transforms.end() ? aiMatrix4x4() : it->second.first;
+  }
+  aiVector3D local_translation(const aiString& name) const {
+    const auto it = node_transforms.find(name.C_Str());
+    if (it == node_transforms.end()) return {};
+    const aiMatrix4x4& m = it->second.second;
+    return {m.a4, m.b4, m.c4};
+  }
 };
+
+glm::vec3 to_vec3(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+Material material_of(const aiMaterial& m) {
+  Material out;
+  aiColor4D colour(0.8f, 0.8f, 0.8f, 1.0f);
+  const bool base = m.Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS;
+  if (!base) m.Get(AI_MATKEY_COLOR_DIFFUSE, colour);
+  out.color = glm::clamp(glm::vec3(colour.r, colour.g, colour.b), 0.0f, 1.0f);
+  float opacity = 1.0f;
+  if (m.Get(AI_MATKEY_OPACITY, opacity) != AI_SUCCESS) {
+    aiString mode;  // glTF: the base colour's alpha is opacity where the mode is BLEND
+    if (m.Get("$mat.gltf.alphaMode", 0, 0, mode) == AI_SUCCESS &&
+        std::string(mode.C_Str()) == "BLEND")
+      opacity = colour.a;
+  }
+  float transmission = 0.0f;
+  if (m.Get(AI_MATKEY_TRANSMISSION_FACTOR, transmission) == AI_SUCCESS)
+    opacity = std::min(opacity, 1.0f - transmission);
+  out.opacity = std::isfinite(opacity) ? std::clamp(opacity, 0.0f, 1.0f) : 1.0f;
+  return out;
+}
+
+// The materials the triangles use, where any is the file's own (not assimp's default); else
+// none, and the triangles' indices are dropped.
+void gather_materials(const aiScene& scene, LoadedMesh& out) {
+  bool own = false;
+  for (std::uint32_t index : out.triangle_material)
+    if (index < scene.mNumMaterials &&
+        std::string(scene.mMaterials[index]->GetName().C_Str()) != AI_DEFAULT_MATERIAL_NAME)
+      own = true;
+  if (!own) {
+    out.triangle_material.clear();
+    return;
+  }
+  // The materials in use, in the file's order, and each triangle's index among them.
+  std::vector<std::uint32_t> slot(scene.mNumMaterials + 1, UINT32_MAX);
+  for (std::uint32_t& index : out.triangle_material)
+    slot[std::min<std::uint32_t>(index, scene.mNumMaterials)] = 0;
+  for (unsigned i = 0; i < scene.mNumMaterials; ++i)
+    if (slot[i] == 0) {
+      slot[i] = static_cast<std::uint32_t>(out.materials.size());
+      out.materials.push_back(
+          {scene.mMaterials[i]->GetName().C_Str(), material_of(*scene.mMaterials[i])});
+    }
+  if (slot[scene.mNumMaterials] == 0) {  // an index past the file's materials: a default one
+    slot[scene.mNumMaterials] = static_cast<std::uint32_t>(out.materials.size());
+    out.materials.push_back({AI_DEFAULT_MATERIAL_NAME, Material{}});
+  }
+  for (std::uint32_t& index : out.triangle_material)
+    index = slot[std::min<std::uint32_t>(index, scene.mNumMaterials)];
+}
+
+// `gltf`: assimp (5.2) reads glTF's cameras its own way: the horizontal field of view is the
+// vertical one times the aspect (not by the tangents), and the camera's position is a copy of its
+// node's translation, which the node's transform applies again.
+void gather_cameras_and_lights(const aiScene& scene, const Gather& gather, bool gltf,
+                               LoadedMesh& out) {
+  for (unsigned i = 0; i < scene.mNumCameras; ++i) {
+    const aiCamera& c = *scene.mCameras[i];
+    if (!(c.mHorizontalFOV > 0.0f) || c.mOrthographicWidth > 0.0f) continue;  // perspective only
+    const aiMatrix4x4 world = gather.world_of(c.mName);
+    const aiMatrix3x3 turn(world);
+    const bool copied = gltf && c.mPosition == gather.local_translation(c.mName);
+    const aiVector3D position = copied ? aiVector3D() : c.mPosition;
+    Camera camera;
+    camera.position = to_vec3(world * position);
+    camera.target = to_vec3(world * (position + c.mLookAt));
+    camera.up = to_vec3(turn * c.mUp);
+    // assimp's field of view is horizontal, the whole angle.
+    const float aspect = c.mAspect > 0.0f ? c.mAspect : 1.0f;
+    const float fov_y = gltf ? c.mHorizontalFOV / aspect
+                             : 2.0f * std::atan(std::tan(c.mHorizontalFOV * 0.5f) / aspect);
+    camera.fov_y_degrees = glm::degrees(fov_y);
+    if (c.mClipPlaneNear > 0.0f) camera.near = c.mClipPlaneNear;
+    if (!std::isfinite(camera.fov_y_degrees) || camera.fov_y_degrees <= 1.0f ||
+        camera.fov_y_degrees >= 179.0f || glm::length(camera.target - camera.position) == 0.0f)
+      continue;
+    out.cameras.push_back({c.mName.C_Str(), camera});
+  }
+  for (unsigned i = 0; i < scene.mNumLights; ++i) {
+    const aiLight& l = *scene.mLights[i];
+    const aiMatrix4x4 world = gather.world_of(l.mName);
+    SceneLight light;
+    if (l.mType == aiLightSource_DIRECTIONAL) {
+      const glm::vec3 towards = -to_vec3(aiMatrix3x3(world) * l.mDirection);  // to the light
+      light.position = glm::vec4(towards, 0.0f);
+    } else if (l.mType == aiLightSource_POINT || l.mType == aiLightSource_SPOT) {
+      light.position = glm::vec4(to_vec3(world * l.mPosition), 1.0f);
+    } else {
+      continue;  // area and ambient lights cast no hard shadows
+    }
+    const glm::vec3 colour(l.mColorDiffuse.r, l.mColorDiffuse.g, l.mColorDiffuse.b);
+    const float top = std::max({colour.r, colour.g, colour.b});
+    light.color = top > 0.0f && std::isfinite(top) ? colour / top : glm::vec3(1.0f);
+    if (!check_light(light.position).ok()) continue;
+    out.lights.push_back({l.mName.C_Str(), light});
+  }
+}
 
 }  // namespace
 
@@ -125,12 +247,12 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
   if (auto fits = check_declared_size(path, size); !ec && !fits) return fits.error();
 
   Assimp::Importer importer;
-  // Only positions and faces matter to a shadow caster; ask assimp for nothing else.
+  // Positions, faces, materials, cameras and lights: ask assimp for nothing else.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
                               aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
                                   aiComponent_COLORS | aiComponent_TEXCOORDS |
                                   aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                  aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS);
+                                  aiComponent_TEXTURES);
   if (progress) importer.SetProgressHandler(new ProgressForwarder(progress));
   const aiScene* scene = nullptr;
   try {
@@ -153,9 +275,13 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
     return make_error(name + ": the file has no scene hierarchy (no meshes placed in it)");
 
   LoadedMesh loaded;
-  Gather gather{scene, &loaded, {}};
+  Gather gather{scene, &loaded, {}, {}};
   gather.node(scene->mRootNode, aiMatrix4x4());
   if (!gather.error.empty()) return make_error(name + ": " + gather.error);
+  gather_materials(*scene, loaded);
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  gather_cameras_and_lights(*scene, gather, extension == ".gltf" || extension == ".glb", loaded);
   if (loaded.points_ignored > 0)
     loaded.warnings.push_back(name + ": ignored " + std::to_string(loaded.points_ignored) +
                               " point primitives (points cast no shadow)");

@@ -12,11 +12,32 @@
 
 #include "core/expected.h"
 #include "core/mesh.h"
+#include "scene/scene.h"
 
 namespace shadowvol {
 
+// What a file says besides its triangles, by the names it gives them.
+struct FileMaterial {
+  std::string name;
+  Material material;  // base colour (glTF base colour factor, else diffuse) and opacity
+};
+struct FileCamera {
+  std::string name;
+  Camera camera;  // in the file's root space, as its node hierarchy places it
+};
+struct FileLight {
+  std::string name;
+  SceneLight light;
+};
+
 struct LoadedMesh {
   Mesh mesh;
+  // Per triangle of `mesh`, its material: an index into `materials`. Both empty where the file
+  // gives no material of its own (only assimp's default).
+  std::vector<std::uint32_t> triangle_material;
+  std::vector<FileMaterial> materials;
+  std::vector<FileCamera> cameras;    // perspective cameras, in the file's order
+  std::vector<FileLight> lights;      // point, spot (as points) and directional lights
   std::size_t points_ignored = 0;     // point primitives in the file (not casters)
   std::size_t lines_ignored = 0;      // line primitives in the file (not casters)
   std::vector<std::string> warnings;  // for the caller to show; loading went on regardless
@@ -25,7 +46,13 @@ struct LoadedMesh {
 // Loads every triangle of every mesh instance in the file's node hierarchy, each transformed by
 // the product of its node's transforms (so instanced meshes appear once per instance), into one
 // Mesh in the file's root space as assimp presents it (assimp turns Z-up COLLADA files to Y up).
-// Points and lines are counted and left out with a warning. Errors (each names the file): missing
+// Points and lines are counted and left out with a warning. Materials: the base colour (glTF's
+// base colour factor; else the diffuse colour: OBJ/MTL Kd, COLLADA, FBX) and opacity (the
+// material's opacity, MTL d; glTF's base colour alpha where its alpha mode is BLEND; 1 - glTF's
+// transmission factor), linear RGB. Cameras: placed by their nodes, the vertical field of view
+// from assimp's horizontal one and the aspect. Lights (glTF KHR_lights_punctual, COLLADA, FBX):
+// their colour, normalised to a largest channel of 1, at intensity 1 (files give intensities in
+// units of their own); spot lights cast as point lights. Errors (each names the file): missing
 // or unreadable file, a file assimp cannot parse, a file with no triangles, and anything
 // validate_mesh refuses (NaN/Inf coordinates, out-of-range indices, sizes past the limits).
 //

@@ -426,22 +426,75 @@ Expected<LoadedScene> load_scene(const std::string& name) {
   if (name.starts_with("stage:")) {
     auto stage = load_stage(name.substr(6));
     if (!stage) return stage.error();
-    return LoadedScene{std::move(*stage), {}};
+    return LoadedScene{std::move(*stage), {}, {}};
   }
   auto builtin = builtin_scene(name);
-  if (builtin) return LoadedScene{std::move(*builtin), {}};
+  if (builtin) return LoadedScene{std::move(*builtin), {}, {}};
   std::error_code ec;
   if (!std::filesystem::exists(name, ec)) return builtin.error();  // lists the built-in names
   if (std::filesystem::path(name).extension() == ".json") {
     auto scene = load_scene_file(name);
     if (!scene) return scene.error();
-    return LoadedScene{std::move(*scene), {}};
+    return LoadedScene{std::move(*scene), {}, {}};
   }
   auto loaded = load_mesh(name);
   if (!loaded) return loaded.error();
+  std::vector<std::string> warnings = std::move(loaded->warnings);
+  std::vector<FileCamera> cameras = loaded->cameras;
   return LoadedScene{
-      default_stage(std::filesystem::path(name).filename().string(), std::move(loaded->mesh)),
-      std::move(loaded->warnings)};
+      file_scene(std::filesystem::path(name).filename().string(), std::move(*loaded)),
+      std::move(warnings), std::move(cameras)};
+}
+
+Scene file_scene(const std::string& name, LoadedMesh loaded) {
+  // The stage around the whole mesh: its ground, camera and light.
+  const bool split = !loaded.materials.empty();
+  Scene scene = default_stage(name, split ? loaded.mesh : std::move(loaded.mesh));
+  if (split) {
+    // An object per material, each with the vertices its triangles use.
+    std::vector<Mesh> parts(loaded.materials.size());
+    std::vector<std::vector<std::uint32_t>> remap(parts.size());
+    for (std::size_t t = 0; t < loaded.triangle_material.size(); ++t) {
+      const std::uint32_t m = loaded.triangle_material[t];
+      Mesh& part = parts[m];
+      if (remap[m].empty()) remap[m].assign(loaded.mesh.positions.size(), UINT32_MAX);
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = loaded.mesh.indices[3 * t + k];
+        if (remap[m][v] == UINT32_MAX) {
+          remap[m][v] = static_cast<std::uint32_t>(part.positions.size());
+          part.positions.push_back(loaded.mesh.positions[v]);
+        }
+        part.indices.push_back(remap[m][v]);
+      }
+    }
+    SceneObject ground = std::move(scene.objects.back());
+    scene.objects.clear();
+    for (std::size_t m = 0; m < parts.size(); ++m)
+      if (!parts[m].indices.empty())
+        scene.objects.push_back(make_object(name + "/" + loaded.materials[m].name,
+                                            std::move(parts[m]), glm::mat4(1.0f),
+                                            loaded.materials[m].material));
+    scene.objects.push_back(std::move(ground));
+  }
+  if (!loaded.cameras.empty()) scene.camera = loaded.cameras.front().camera;
+  if (!loaded.lights.empty()) {
+    scene.lights.clear();
+    for (const FileLight& l : loaded.lights) scene.lights.push_back(l.light);
+  }
+  return scene;
+}
+
+Expected<void> use_camera(LoadedScene& loaded, const std::string& name) {
+  for (const FileCamera& c : loaded.cameras)
+    if (c.name == name) {
+      loaded.scene.camera = c.camera;
+      return {};
+    }
+  std::string names;
+  for (const FileCamera& c : loaded.cameras) names += (names.empty() ? "" : ", ") + c.name;
+  return make_error("--camera " + name + ": " +
+                    (names.empty() ? std::string("the scene has no cameras of its own")
+                                   : "no camera of that name; the scene's are " + names));
 }
 
 }  // namespace shadowvol

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "scene/mesh_io.h"
 #include "scene/scene.h"
 
 namespace shadowvol {
@@ -27,11 +28,22 @@ std::string describe_json_error(const nlohmann::json::exception& e, const std::s
 struct LoadedScene {
   Scene scene;
   std::vector<std::string> warnings;  // what reading a mesh file passed over (mesh_io.h)
+  std::vector<FileCamera> cameras;    // a mesh file's own cameras, by name (mesh_io.h)
 };
 // `stage:NAME`: the benchmark stage of NAME (scene/stage.h: sphere:N, cad or a mesh file); else
 // a built-in scene by name (builtin_scene), else a scene file (.json) or a mesh file that exists
-// (any format mesh_io reads), the mesh on default_stage under its file name. An unknown name
-// that names no file is refused with the built-in names listed.
+// (any format mesh_io reads), as file_scene makes it. An unknown name that names no file is
+// refused with the built-in names listed.
 Expected<LoadedScene> load_scene(const std::string& name);
+
+// A mesh file as a scene: an object per material the file gives (named FILE/MATERIAL, its base
+// colour and opacity: below 1, a transparent caster), else one object in the stage's colour; the
+// file's first camera and its lights where it has them, and default_stage's for what it lacks;
+// default_stage's ground under it all.
+Scene file_scene(const std::string& name, LoadedMesh loaded);
+
+// Looks through the camera of that name among the file's (`render --camera NAME`); an unknown
+// name is refused with the names there are.
+Expected<void> use_camera(LoadedScene& loaded, const std::string& name);
 
 }  // namespace shadowvol

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "core/topology.h"
 #include "scene/mesh_io.h"
@@ -83,6 +85,84 @@ TEST(LoadMesh, PointsAndLinesAreLeftOutWithAWarning) {
   EXPECT_EQ(loaded->lines_ignored, 1u);
   ASSERT_EQ(loaded->warnings.size(), 2u);
   EXPECT_NE(loaded->warnings[0].find("points_and_lines.obj: ignored 1 point"), std::string::npos);
+}
+
+const FileMaterial* material_named(const LoadedMesh& loaded, const std::string& name) {
+  for (const FileMaterial& m : loaded.materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+TEST(LoadMesh, GltfMaterialsCamerasAndLightsAreRead) {
+  // A red box, a thin blue panel blended at alpha 0.4, a floor; two cameras placed by their nodes
+  // (ShotNode at (0, 2.5, 5) pitched down by 2 asin(0.1891) = 21.8 degrees, yfov 0.8 radians);
+  // a KHR_lights_punctual point light of colour (1, 0.8, 0.6) at (2, 4, 3).
+  auto loaded = load_mesh(kData / "materials.gltf");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_EQ(loaded->triangle_material.size(), loaded->mesh.triangle_count());
+  ASSERT_EQ(loaded->materials.size(), 3u);
+  const FileMaterial* red = material_named(*loaded, "Red");
+  const FileMaterial* glass = material_named(*loaded, "BlueGlass");
+  ASSERT_TRUE(red && glass && material_named(*loaded, "Floor"));
+  EXPECT_NEAR(glm::distance(red->material.color, glm::vec3(0.8f, 0.1f, 0.1f)), 0.0f, 1e-6f);
+  EXPECT_EQ(red->material.opacity, 1.0f);
+  EXPECT_NEAR(glm::distance(glass->material.color, glm::vec3(0.2f, 0.4f, 0.9f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glass->material.opacity, 0.4f, 1e-6f);
+  const auto uses = [&](const FileMaterial* m) {
+    return std::count(loaded->triangle_material.begin(), loaded->triangle_material.end(),
+                      static_cast<std::uint32_t>(m - loaded->materials.data()));
+  };
+  EXPECT_EQ(uses(red), 12);    // the box
+  EXPECT_EQ(uses(glass), 12);  // the panel, a thin box
+  EXPECT_EQ(uses(material_named(*loaded, "Floor")), 2);
+
+  ASSERT_EQ(loaded->cameras.size(), 2u);
+  EXPECT_EQ(loaded->cameras[0].name, "ShotNode");
+  EXPECT_EQ(loaded->cameras[1].name, "SideNode");
+  const Camera& shot = loaded->cameras[0].camera;
+  EXPECT_NEAR(glm::distance(shot.position, glm::vec3(0.0f, 2.5f, 5.0f)), 0.0f, 1e-5f);
+  const float pitch = 2.0f * std::asin(0.18910752f);
+  const glm::vec3 ahead = glm::normalize(shot.target - shot.position);
+  EXPECT_NEAR(glm::distance(ahead, glm::vec3(0.0f, -std::sin(pitch), -std::cos(pitch))), 0.0f,
+              1e-5f);
+  EXPECT_NEAR(shot.fov_y_degrees, glm::degrees(0.8f), 1e-3f);
+  EXPECT_NEAR(shot.near, 0.05f, 1e-6f);
+  const Camera& side = loaded->cameras[1].camera;  // turned 90 degrees about y: looking along -x
+  EXPECT_NEAR(glm::distance(glm::normalize(side.target - side.position), glm::vec3(-1, 0, 0)), 0.0f,
+              1e-5f);
+  EXPECT_NEAR(side.fov_y_degrees, glm::degrees(0.9f), 1e-3f);
+
+  ASSERT_EQ(loaded->lights.size(), 1u);
+  EXPECT_EQ(loaded->lights[0].name, "BulbNode");
+  const SceneLight& bulb = loaded->lights[0].light;
+  EXPECT_NEAR(glm::distance(bulb.position, glm::vec4(2, 4, 3, 1)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::distance(bulb.color, glm::vec3(1.0f, 0.8f, 0.6f)), 0.0f, 1e-6f);
+}
+
+TEST(LoadMesh, MtlDiffuseAndDissolveAreRead) {
+  auto loaded = load_mesh(kData / "materials.obj");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_EQ(loaded->materials.size(), 2u);  // assimp's default material is not one of the file's
+  const FileMaterial* green = material_named(*loaded, "green");
+  const FileMaterial* smoke = material_named(*loaded, "smoke");
+  ASSERT_TRUE(green && smoke);
+  EXPECT_NEAR(glm::distance(green->material.color, glm::vec3(0.1f, 0.7f, 0.2f)), 0.0f, 1e-6f);
+  EXPECT_EQ(green->material.opacity, 1.0f);
+  EXPECT_NEAR(smoke->material.opacity, 0.25f, 1e-6f);
+  const auto index = [&](const FileMaterial* m) {
+    return static_cast<std::uint32_t>(m - loaded->materials.data());
+  };
+  EXPECT_EQ(loaded->triangle_material,
+            (std::vector<std::uint32_t>{index(green), index(green), index(smoke)}));
+  EXPECT_TRUE(loaded->cameras.empty());
+  EXPECT_TRUE(loaded->lights.empty());
+}
+
+TEST(LoadMesh, AFileWithoutMaterialsGivesNone) {
+  auto loaded = load_mesh(kData / "cube_quads.obj");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  EXPECT_TRUE(loaded->materials.empty());
+  EXPECT_TRUE(loaded->triangle_material.empty());
 }
 
 struct BadFile {

@@ -52,6 +52,49 @@ TEST(SceneFile, AnimationSpinsMovesAndOrbits) {
   EXPECT_EQ(scene_at_frame(*scene, 0).objects[0].transform, scene->objects[0].transform);
 }
 
+// A mesh file as a scene: its materials make its objects, its camera and lights replace the
+// stage's; only the stage's ground is added.
+TEST(MeshFileScene, TakesTheFilesMaterialsCamerasAndLights) {
+  auto loaded = load_scene(std::string(SHADOWVOL_TEST_DATA) + "/materials.gltf");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  const Scene& scene = loaded->scene;
+  ASSERT_EQ(scene.objects.size(), 4u);
+  std::vector<std::string> names;
+  for (const SceneObject& o : scene.objects) names.push_back(o.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"materials.gltf/Red", "materials.gltf/BlueGlass",
+                                             "materials.gltf/Floor", "ground"}));
+  EXPECT_EQ(scene.objects[0].mesh->triangle_count(), 12u);
+  EXPECT_FALSE(scene.objects[0].material.transparent());
+  EXPECT_TRUE(scene.objects[1].material.transparent());  // alphaMode BLEND, alpha 0.4
+  EXPECT_NEAR(scene.objects[1].material.opacity, 0.4f, 1e-6f);
+  ASSERT_EQ(loaded->cameras.size(), 2u);
+  EXPECT_EQ(scene.camera.position, loaded->cameras[0].camera.position);  // the first: ShotNode
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_NEAR(scene.lights[0].position.y, 4.0f, 1e-5f);
+
+  ASSERT_TRUE(use_camera(*loaded, "SideNode").ok());
+  EXPECT_EQ(loaded->scene.camera.position, loaded->cameras[1].camera.position);
+  auto unknown = use_camera(*loaded, "Nope");
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_EQ(unknown.error().message,
+            "--camera Nope: no camera of that name; the scene's are ShotNode, SideNode");
+}
+
+TEST(MeshFileScene, AFileWithoutMaterialsCamerasOrLightsKeepsTheStages) {
+  auto loaded = load_scene(std::string(SHADOWVOL_TEST_DATA) + "/cube_quads.obj");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  Mesh cube = load_mesh(std::string(SHADOWVOL_TEST_DATA) + "/cube_quads.obj")->mesh;
+  const Scene stage = default_stage("cube_quads.obj", cube);
+  ASSERT_EQ(loaded->scene.objects.size(), 2u);
+  EXPECT_EQ(loaded->scene.objects[0].name, "cube_quads.obj");
+  EXPECT_EQ(loaded->scene.objects[0].material, stage.objects[0].material);
+  EXPECT_EQ(loaded->scene.camera.position, stage.camera.position);
+  EXPECT_EQ(loaded->scene.lights.size(), stage.lights.size());
+  auto none = use_camera(*loaded, "Any");
+  ASSERT_FALSE(none.ok());
+  EXPECT_EQ(none.error().message, "--camera Any: the scene has no cameras of its own");
+}
+
 // "opacity": below 1, a transparent caster whose shadow passes (1 - opacity) * color.
 TEST(SceneFile, OpacityMakesATransparentCaster) {
   const auto path = write_temp("glass", R"({

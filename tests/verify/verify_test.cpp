@@ -415,11 +415,12 @@ TEST(SceneFiles, FarFromTheOriginStillMatchesTheReference) {
 
 class RealMeshes : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(RealMeshes, OnTheirDefaultStageMatchTheReference) {
-  const std::filesystem::path path = GetParam();
-  auto loaded = load_mesh(path);
+// Each file as load_scene makes it: on the default stage, with the file's own materials
+// (transparent ones casting coloured shadows), cameras and lights where it has them.
+TEST_P(RealMeshes, AsTheirScenesMatchTheReference) {
+  auto loaded = load_scene(GetParam());
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;
-  const Scene scene = default_stage(path.filename().string(), std::move(loaded->mesh));
+  const Scene& scene = loaded->scene;
   for (const Variant& v : kVariants)
     for (Method m : {Method::zpass, Method::zfail}) {
       const Comparison c = verify(scene, m, Generator::automatic, v);
@@ -439,9 +440,11 @@ INSTANTIATE_TEST_SUITE_P(Files, RealMeshes,
                          ::testing::Values(std::string(SHADOWVOL_SOURCE_DIR) +
                                                "/scenes/meshes/torus_knot.obj",
                                            std::string(SHADOWVOL_TEST_DATA) + "/open_box.ply",
-                                           std::string(SHADOWVOL_TEST_DATA) + "/fin.stl"),
+                                           std::string(SHADOWVOL_TEST_DATA) + "/fin.stl",
+                                           std::string(SHADOWVOL_TEST_DATA) + "/materials.gltf",
+                                           std::string(SHADOWVOL_TEST_DATA) + "/materials.obj"),
                          [](const auto& info) {
-                           std::string n = std::filesystem::path(info.param).stem().string();
+                           std::string n = std::filesystem::path(info.param).filename().string();
                            for (char& ch : n)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return n;
