@@ -93,6 +93,8 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
                   "--cull, --clamp: the side of each light view, in pixels (a cube's faces each)")
       ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_flag("--flat", args.flat,
+                "Shade every face flat, ignoring the mesh files' normals (shadows do not change)");
   cmd->add_option("--camera", args.camera,
                   "A mesh file's own camera, by name (glTF, COLLADA, FBX); without it, the file's "
                   "first camera, or the default stage's where it has none");
@@ -134,6 +136,7 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scen
   if (!loaded) return loaded.error();
   if (!args.camera.empty())
     if (auto ok = use_camera(*loaded, args.camera); !ok) return ok.error();
+  if (args.flat) shade_flat(loaded->scene);
   for (const std::string& w : loaded->warnings) warn(w);
   auto method = parsed("--method", args.method, parse_method);
   if (!method) return method.error();

@@ -56,6 +56,7 @@ struct FrameArgs {
   int slices = kDefaultSlices;
   int light_view = 512;
   bool serial_volumes = false;  // RenderOptions::overlap_volumes off
+  bool flat = false;            // shade every face flat (shade_flat)
   std::string camera = "";  // a mesh file's own camera by name; empty: its first, or the stage's
 };
 // `with_backend`: false for the viewer, which is OpenGL by nature.

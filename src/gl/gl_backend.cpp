@@ -95,6 +95,10 @@ struct GlBackend::MeshBuffers {
   std::shared_ptr<const Mesh> mesh;
   std::shared_ptr<const Topology> topology;
   Object positions = make_buffer(), indices = make_buffer(), normals = make_buffer();
+  // The shading normals of the object last drawn with this mesh (SceneObject::shading), per
+  // corner the normal and its terminator offset (w); null source: flat.
+  std::shared_ptr<const ShadingNormals> corner_normals_source;
+  Object corner_normals;
   Object vao = make_vertex_array();
   GLsizei index_count = 0;
   Object adjacency_positions, adjacency_indices, adjacency_vao;
@@ -440,8 +444,22 @@ GlBackend::MeshBuffers& GlBackend::mesh_buffers(const SceneObject& object) {
     glVertexArrayElementBuffer(m.vao.get(), m.indices.get());
     m.index_count = static_cast<GLsizei>(mesh.indices.size());
   }
-  slot->used = true;
-  return *slot;
+  MeshBuffers& m = *slot;
+  const ShadingNormals* smooth = smooth_shading(object);
+  if (!smooth) {
+    m.corner_normals_source.reset();
+  } else if (m.corner_normals_source != object.shading) {
+    m.corner_normals_source = object.shading;
+    std::vector<glm::vec4> corners(smooth->normals.size());
+    for (std::size_t c = 0; c < corners.size(); ++c)
+      corners[c] = glm::vec4(smooth->normals[c], smooth->offsets[c]);
+    m.corner_normals = make_buffer();
+    glNamedBufferStorage(m.corner_normals.get(),
+                         static_cast<GLsizeiptr>(corners.size() * sizeof(glm::vec4)),
+                         corners.data(), 0);
+  }
+  m.used = true;
+  return m;
 }
 
 Expected<void> check_frame(const GlSettings& settings, const RenderOptions& options) {
@@ -1292,7 +1310,16 @@ void GlBackend::light_pass(std::size_t l, Layer layer) {
     glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(material.color));
     glUniform3fv(glsl::kRadiance, 1, glm::value_ptr(reflected));
     glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame_meshes_[o]->normals.get());
+    const MeshBuffers& m = *frame_meshes_[o];
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kFaceNormalsBinding, m.normals.get());
+    const bool smooth = m.corner_normals_source != nullptr;
+    glUniform1i(glsl::kSmoothNormals, smooth);
+    if (smooth) {
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kPositionsBinding, m.positions.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kIndicesBinding, m.indices.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kCornerNormalsBinding,
+                       m.corner_normals.get());
+    }
   };
   // The objects that receive shadows by the counts; then those that do not, lit whatever the
   // counts say (SceneObject::receives_shadows).

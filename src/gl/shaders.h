@@ -21,7 +21,12 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kCountTexture = 10, kFirstId = 11, kAmbient = 12, kSpecular = 13,
                      kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
                      kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
-                     kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25;
+                     kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25,
+                     kSmoothNormals = 26;
+
+// Shader storage bindings of the lit pass.
+inline constexpr int kFaceNormalsBinding = 0, kPositionsBinding = 1, kIndicesBinding = 2,
+                     kCornerNormalsBinding = 3;
 
 // The vertices of a face in the vertex shader's volume mesh (kVolumeExtrusionVertex).
 inline constexpr int kVertexVolumeCorners = 24;
@@ -145,6 +150,13 @@ void main() {
 inline constexpr const char* kLitFragment = R"(#version 450 core
 in Surface { vec3 eye_position; } surface;
 layout(std430, binding = 0) readonly buffer FaceNormals { vec4 normals[]; };
+// Smooth shading (render/shading.h, interpolate_smooth): the face's corners, their normals and
+// terminator offsets (w).
+layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
+layout(std430, binding = 2) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = 3) readonly buffer CornerNormals { vec4 corner_normals[]; };
+layout(location = 26) uniform bool smooth_normals;
+layout(location = 1) uniform mat4 model;  // eye-relative
 layout(location = 2) uniform mat3 normal_matrix;
 layout(location = 8) uniform vec3 albedo;
 layout(location = 4) uniform vec4 light;  // eye-relative
@@ -164,18 +176,42 @@ void main() {
   if (texelFetch(visible_ids, pixel, 0).r != first_id + uint(gl_PrimitiveID) + 1u) discard;
   if (count_texture && texelFetch(counts, ivec2(gl_FragCoord.xy), 0).r != 0.0) discard;
   vec3 arriving = light_map ? exp(texelFetch(log_light, ivec2(gl_FragCoord.xy), 0).rgb) : vec3(1.0);
-  vec3 n = normal_matrix * normals[gl_PrimitiveID].xyz;
-  n = length(n) > 0.0 ? normalize(n) : vec3(0.0, 1.0, 0.0);
+  vec3 face = normal_matrix * normals[gl_PrimitiveID].xyz;
+  face = length(face) > 0.0 ? normalize(face) : vec3(0.0, 1.0, 0.0);
   vec3 eye_position = surface.eye_position;
   vec3 to_eye = normalize(-eye_position);  // the eye is the origin
-  if (dot(n, to_eye) < 0.0) n = -n;         // two-sided: light the side we see
+  vec3 n = face;
+  float offset = 0.0;
+  if (smooth_normals) {
+    vec3 c[3], cn[3];
+    float t[3];
+    for (int k = 0; k < 3; ++k) {
+      int corner = 3 * gl_PrimitiveID + k;
+      c[k] = (model * positions[indices[corner]]).xyz;
+      cn[k] = normal_matrix * corner_normals[corner].xyz;
+      t[k] = corner_normals[corner].w;
+    }
+    vec3 across = cross(c[1] - c[0], c[2] - c[0]);
+    if (dot(across, across) > 0.0) {
+      vec3 w = vec3(max(0.0, dot(cross(c[2] - c[1], eye_position - c[1]), across)),
+                    max(0.0, dot(cross(c[0] - c[2], eye_position - c[2]), across)),
+                    max(0.0, dot(cross(c[1] - c[0], eye_position - c[0]), across)));
+      vec3 mixed = w.x * cn[0] + w.y * cn[1] + w.z * cn[2];
+      float sum = w.x + w.y + w.z;
+      if (length(mixed) > 0.0 && sum > 0.0) {
+        n = normalize(mixed);
+        offset = dot(w, vec3(t[0], t[1], t[2])) / sum;
+      }
+    }
+  }
+  if (dot(face, to_eye) < 0.0) n = -n;  // two-sided: light the side we see, as the face shows
   vec3 towards = light.w != 0.0 ? light.xyz / light.w - eye_position : light.xyz;
   float d2 = dot(towards, towards);
   float x = d2 * falloff.x;
   float window = x * x < 1.0 ? 1.0 - x * x : 0.0;
   float reaching = window * window / (1.0 + d2 * falloff.y);
   vec3 to_light = normalize(towards);
-  float lambert = dot(n, to_light);
+  float lambert = (dot(n, to_light) - offset) / (1.0 - offset);
   if (lambert <= 0.0 || reaching <= 0.0) discard;
   float spec = pow(max(0.0, dot(n, normalize(to_light + to_eye))), shininess);
   color = vec4(reaching * radiance * arriving * (albedo * lambert + vec3(specular * spec)), 0.0);

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -18,6 +20,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/ProgressHandler.hpp>
 
+#include "core/shading_normals.h"
 #include "core/volume.h"
 #include "scene/declared_size.h"
 
@@ -77,6 +80,8 @@ std::string explain_failure(const std::filesystem::path& path, const std::string
   return (found.empty() ? std::string("its data is inconsistent") : found) + "; assimp: " + why;
 }
 
+glm::vec3 to_vec3(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
 struct Gather {
   const aiScene* scene;
   LoadedMesh* out;
@@ -95,6 +100,17 @@ struct Gather {
   void mesh(const aiMesh* m, const aiMatrix4x4& world) {
     Mesh& dst = out->mesh;
     const std::size_t base = dst.positions.size();
+    // Normals turn by the inverse transpose; a corner without a usable one is left NaN, for
+    // crease_normals to fill.
+    aiMatrix3x3 turn_normals = aiMatrix3x3(world);
+    turn_normals.Inverse().Transpose();
+    const auto file_normal = [&](unsigned v) {
+      constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+      if (!m->HasNormals()) return glm::vec3(kNone);
+      const glm::vec3 n = to_vec3(turn_normals * m->mNormals[v]);
+      const float len = glm::length(n);
+      return len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(kNone);
+    };
     for (unsigned v = 0; v < m->mNumVertices; ++v) {
       const aiVector3D p = world * m->mVertices[v];
       dst.positions.emplace_back(p.x, p.y, p.z);
@@ -116,6 +132,8 @@ struct Gather {
                   " uses vertex " + std::to_string(face.mIndices[k]) + " of only " +
                   std::to_string(m->mNumVertices);
         dst.indices.push_back(static_cast<std::uint32_t>(base + face.mIndices[k]));
+        out->corner_normals.push_back(
+            face.mIndices[k] < m->mNumVertices ? file_normal(face.mIndices[k]) : glm::vec3(0.0f));
       }
       out->triangle_material.push_back(m->mMaterialIndex);
     }
@@ -132,8 +150,6 @@ struct Gather {
     return {m.a4, m.b4, m.c4};
   }
 };
-
-glm::vec3 to_vec3(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 
 Material material_of(const aiMaterial& m) {
   Material out;
@@ -247,12 +263,11 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
   if (auto fits = check_declared_size(path, size); !ec && !fits) return fits.error();
 
   Assimp::Importer importer;
-  // Positions, faces, materials, cameras and lights: ask assimp for nothing else.
+  // Positions, normals, faces, materials, cameras and lights: ask assimp for nothing else.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
-                                  aiComponent_COLORS | aiComponent_TEXCOORDS |
-                                  aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                  aiComponent_TEXTURES);
+                              aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                                  aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS |
+                                  aiComponent_ANIMATIONS | aiComponent_TEXTURES);
   if (progress) importer.SetProgressHandler(new ProgressForwarder(progress));
   const aiScene* scene = nullptr;
   try {
@@ -294,6 +309,14 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
                            ? std::string(" (only points or lines)")
                            : std::string()));
   if (auto valid = validate_mesh(loaded.mesh, name); !valid) return valid.error();
+  // The file's normals where it gives them, the crease angle's elsewhere.
+  const bool all_given = std::none_of(loaded.corner_normals.begin(), loaded.corner_normals.end(),
+                                      [](const glm::vec3& n) { return std::isnan(n.x); });
+  if (!all_given) {
+    const std::vector<glm::vec3> creased = crease_normals(loaded.mesh, kDefaultCreaseDegrees);
+    for (std::size_t c = 0; c < creased.size(); ++c)
+      if (std::isnan(loaded.corner_normals[c].x)) loaded.corner_normals[c] = creased[c];
+  }
   return loaded;
 }
 

@@ -36,6 +36,9 @@ struct LoadedMesh {
   // gives no material of its own (only assimp's default).
   std::vector<std::uint32_t> triangle_material;
   std::vector<FileMaterial> materials;
+  // Per corner of `mesh` (as mesh.indices), the shading normal: the file's vertex normal where
+  // it gives one, else crease_normals' at kDefaultCreaseDegrees (core/shading_normals.h).
+  std::vector<glm::vec3> corner_normals;
   std::vector<FileCamera> cameras;    // perspective cameras, in the file's order
   std::vector<FileLight> lights;      // point, spot (as points) and directional lights
   std::size_t points_ignored = 0;     // point primitives in the file (not casters)
@@ -49,12 +52,14 @@ struct LoadedMesh {
 // Points and lines are counted and left out with a warning. Materials: the base colour (glTF's
 // base colour factor; else the diffuse colour: OBJ/MTL Kd, COLLADA, FBX) and opacity (the
 // material's opacity, MTL d; glTF's base colour alpha where its alpha mode is BLEND; 1 - glTF's
-// transmission factor), linear RGB. Cameras: placed by their nodes, the vertical field of view
-// from assimp's horizontal one and the aspect. Lights (glTF KHR_lights_punctual, COLLADA, FBX):
-// their colour, normalised to a largest channel of 1, at intensity 1 (files give intensities in
-// units of their own); spot lights cast as point lights. Errors (each names the file): missing
-// or unreadable file, a file assimp cannot parse, a file with no triangles, and anything
-// validate_mesh refuses (NaN/Inf coordinates, out-of-range indices, sizes past the limits).
+// transmission factor), linear RGB. Normals: the file's, turned by the inverse transpose of
+// their node's transform, a crease angle's where it has none. Cameras: placed by their nodes, the
+// vertical field of view from assimp's horizontal one and the aspect. Lights (glTF
+// KHR_lights_punctual, COLLADA, FBX): their colour, normalised to a largest channel of 1, at
+// intensity 1 (files give intensities in units of their own); spot lights cast as point lights.
+// Errors (each names the file): missing or unreadable file, a file assimp cannot parse, a file with
+// no triangles, and anything validate_mesh refuses (NaN/Inf coordinates, out-of-range indices,
+// sizes past the limits).
 //
 // `progress`, if set, is called now and then with a fraction in [0, 1] while the file is read
 // (as often as assimp reports, which for some formats is only at the start and the end).

@@ -88,6 +88,17 @@ SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& transform,
   return {std::move(name), std::move(shared), std::move(topology), transform, material, {}};
 }
 
+void set_shading_normals(SceneObject& object, std::vector<glm::vec3> corner_normals) {
+  object.shading = corner_normals.empty() || !object.mesh
+                       ? nullptr
+                       : std::make_shared<const ShadingNormals>(
+                             make_shading_normals(*object.mesh, std::move(corner_normals)));
+}
+
+void shade_flat(Scene& scene) {
+  for (SceneObject& o : scene.objects) o.shading = nullptr;
+}
+
 bool has_transparent_casters(const Scene& scene) {
   return std::any_of(scene.objects.begin(), scene.objects.end(),
                      [](const SceneObject& o) { return o.material.transparent(); });

@@ -18,6 +18,7 @@
 
 #include "core/expected.h"
 #include "core/mesh.h"
+#include "core/shading_normals.h"
 #include "core/topology.h"
 
 namespace shadowvol {
@@ -75,7 +76,21 @@ struct SceneObject {
   // lit by every light that reaches it, whatever lies between (it still casts, if it does).
   bool casts_shadows = true;
   bool receives_shadows = true;
+  // Per triangle corner, in the mesh's own space, the normal the lit pass shades with and its
+  // terminator offset (core/shading_normals.h); null, or any count but one per corner: flat,
+  // each face its own normal. Shading only: shadows are the geometry's.
+  std::shared_ptr<const ShadingNormals> shading = nullptr;
 };
+// The object's shading normals where it has them for every corner, else null (flat).
+inline const ShadingNormals* smooth_shading(const SceneObject& object) {
+  const ShadingNormals* s = object.shading.get();
+  return s && object.mesh && s->normals.size() == object.mesh->indices.size() &&
+                 s->offsets.size() == s->normals.size()
+             ? s
+             : nullptr;
+}
+// Shading normals for the object's mesh from per-corner normals (null where there are none).
+void set_shading_normals(SceneObject& object, std::vector<glm::vec3> corner_normals);
 
 // A point light's range: beyond it the light reaches nothing (render/shading.h's falloff is 0
 // there), so no object wholly outside its sphere casts or receives anything of it.
@@ -139,6 +154,8 @@ inline SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& tra
   return make_object(std::move(name), std::move(mesh), transform, Material{color});
 }
 
+// Every object shaded flat (`--flat`): its shading normals dropped.
+void shade_flat(Scene& scene);
 // Whether any object of the scene is transparent (Material::transparent).
 bool has_transparent_casters(const Scene& scene);
 

@@ -308,6 +308,7 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
       return make_error(name + ": " + p +
                         ": give either mesh (a file) or shape (a built-in shape)");
     Mesh mesh;
+    std::vector<glm::vec3> corner_normals;  // a mesh file's (mesh_io.h)
     std::string object_name = "object" + std::to_string(i);
     if (o.contains("name")) {
       if (!o["name"].is_string()) return make_error(name + ": " + p + ".name: expected a string");
@@ -321,6 +322,7 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
       auto loaded = load_mesh(file);
       if (!loaded) return make_error(name + ": " + p + ".mesh: " + loaded.error().message);
       mesh = std::move(loaded->mesh);
+      corner_normals = std::move(loaded->corner_normals);
     } else if (!r.shape(o["shape"], p + ".shape", mesh)) {
       return make_error(r.error);
     }
@@ -379,12 +381,14 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
         *flag = o[key].get<bool>();
       }
     // Decomposed (Laine 2005 §6): each connected part an object of its own, with its own split
-    // plane; vertices at equal positions join, since mesh files often repeat them per face.
+    // plane; vertices at equal positions join, since mesh files often repeat them per face. The
+    // parts shade flat.
     std::vector<Mesh> parts;
     if (decompose)
       parts = connected_parts(mesh, true);
     else
       parts.push_back(std::move(mesh));
+    const bool smooth = parts.size() == 1 && !corner_normals.empty();
     for (std::size_t k = 0; k < parts.size(); ++k) {
       const std::string part_name =
           parts.size() > 1 ? object_name + "/" + std::to_string(k + 1) : object_name;
@@ -393,6 +397,7 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
       scene.objects.back().split_plane = split_plane;
       scene.objects.back().casts_shadows = casts;
       scene.objects.back().receives_shadows = receives;
+      if (smooth) set_shading_normals(scene.objects.back(), std::move(corner_normals));
     }
   }
   return scene;
@@ -453,10 +458,14 @@ Scene file_scene(const std::string& name, LoadedMesh loaded) {
   if (split) {
     // An object per material, each with the vertices its triangles use.
     std::vector<Mesh> parts(loaded.materials.size());
+    std::vector<std::vector<glm::vec3>> normals(parts.size());
     std::vector<std::vector<std::uint32_t>> remap(parts.size());
     for (std::size_t t = 0; t < loaded.triangle_material.size(); ++t) {
       const std::uint32_t m = loaded.triangle_material[t];
       Mesh& part = parts[m];
+      if (!loaded.corner_normals.empty())
+        normals[m].insert(normals[m].end(), &loaded.corner_normals[3 * t],
+                          &loaded.corner_normals[3 * t] + 3);
       if (remap[m].empty()) remap[m].assign(loaded.mesh.positions.size(), UINT32_MAX);
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = loaded.mesh.indices[3 * t + k];
@@ -469,12 +478,16 @@ Scene file_scene(const std::string& name, LoadedMesh loaded) {
     }
     SceneObject ground = std::move(scene.objects.back());
     scene.objects.clear();
-    for (std::size_t m = 0; m < parts.size(); ++m)
-      if (!parts[m].indices.empty())
-        scene.objects.push_back(make_object(name + "/" + loaded.materials[m].name,
-                                            std::move(parts[m]), glm::mat4(1.0f),
-                                            loaded.materials[m].material));
+    for (std::size_t m = 0; m < parts.size(); ++m) {
+      if (parts[m].indices.empty()) continue;
+      scene.objects.push_back(make_object(name + "/" + loaded.materials[m].name,
+                                          std::move(parts[m]), glm::mat4(1.0f),
+                                          loaded.materials[m].material));
+      set_shading_normals(scene.objects.back(), std::move(normals[m]));
+    }
     scene.objects.push_back(std::move(ground));
+  } else {
+    set_shading_normals(scene.objects.front(), std::move(loaded.corner_normals));
   }
   if (!loaded.cameras.empty()) scene.camera = loaded.cameras.front().camera;
   if (!loaded.lights.empty()) {

@@ -496,12 +496,20 @@ void SoftBackend::shade() {
     for (const std::int32_t o : layer->object)
       if (o >= 0) seen_[static_cast<std::size_t>(o)] = 1;
   normals_.resize(scene.objects.size());
+  smooth_.resize(scene.objects.size());
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     if (!seen_[o]) continue;
-    const Mesh& mesh = *scene.objects[o].mesh;
+    const SceneObject& object = scene.objects[o];
+    const Mesh& mesh = *object.mesh;
     const glm::mat4& model = plan.objects[o].model;
     std::vector<glm::vec3>& normals = normals_[o];
     normals.resize(mesh.triangle_count());
+    const ShadingNormals* given = smooth_shading(object);
+    SmoothFaces& smooth = smooth_[o];
+    smooth.corners.resize(given ? mesh.indices.size() : 0);
+    smooth.offsets = given ? given->offsets.data() : nullptr;
+    smooth.normals.resize(smooth.corners.size());
+    const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model))));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, normals.size(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t f = r.begin(); f < r.end(); ++f) {
@@ -512,6 +520,12 @@ void SoftBackend::shade() {
                           const glm::vec3 n = glm::cross(b - a, c - a);
                           const float len = glm::length(n);
                           normals[f] = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+                          if (!given) continue;
+                          const glm::vec3 corners[3] = {a, b, c};
+                          for (std::size_t k = 0; k < 3; ++k) {
+                            smooth.corners[3 * f + k] = corners[k];
+                            smooth.normals[3 * f + k] = normal_matrix * given->normals[3 * f + k];
+                          }
                         }
                       });
   }
@@ -557,16 +571,17 @@ struct RowPoints {
   glm::vec4 base, step, along_z;  // the point (homogeneous) at x: base + step x + along_z z
 };
 
-// Adds one light to a row's colours (r, g, b: the ambient term at first): Lambert + Blinn-Phong
-// where the light reaches the surface, on the side the eye sees. Arrays of the row's pixels,
+// Adds one light to a row's colours (r, g, b: the ambient term at first): Lambert (less the
+// terminator offset of smooth shading: render/shading.h) + Blinn-Phong where the light reaches
+// the surface, on the side the eye sees. Arrays of the row's pixels,
 // distinct (restrict: GCC honours it on parameters), so that the loop vectorizes across pixels.
 template <bool kThroughGlass>
 void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, shading::Falloff falloff,
                const float* __restrict z, const float* __restrict nx, const float* __restrict ny,
-               const float* __restrict nz, const float* __restrict ar, const float* __restrict ag,
-               const float* __restrict ab, const std::uint8_t* __restrict shadowed,
-               const glm::vec3* __restrict arriving, float* __restrict r, float* __restrict g,
-               float* __restrict b) {
+               const float* __restrict nz, const float* __restrict offset,
+               const float* __restrict ar, const float* __restrict ag, const float* __restrict ab,
+               const std::uint8_t* __restrict shadowed, const glm::vec3* __restrict arriving,
+               float* __restrict r, float* __restrict g, float* __restrict b) {
   for (int x = 0; x < n; ++x) {
     const float fx = float(x);
     // The point (float: it only aims the light) and the unit vector to the eye, the origin.
@@ -576,15 +591,14 @@ void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, shadin
     const float pz = (row.base.z + row.step.z * fx + row.along_z.z * z[x]) * inv_w;
     const float to_eye = -1.0f / std::sqrt(px * px + py * py + pz * pz);
     const float ex = px * to_eye, ey = py * to_eye, ez = pz * to_eye;
-    const float side = nx[x] * ex + ny[x] * ey + nz[x] * ez < 0.0f ? -1.0f : 1.0f;
-    const float sx = nx[x] * side, sy = ny[x] * side, sz = nz[x] * side;
+    const float sx = nx[x], sy = ny[x], sz = nz[x];  // on the eye's side already (shade_row)
     float lx = light_at.x - px * light_at.w, ly = light_at.y - py * light_at.w,
           lz = light_at.z - pz * light_at.w;
     const float d2 = lx * lx + ly * ly + lz * lz;
     const float reaching = shading::falloff(d2, falloff);
     const float inv = 1.0f / std::sqrt(d2);
     lx *= inv, ly *= inv, lz *= inv;
-    const float lambert = sx * lx + sy * ly + sz * lz;
+    const float lambert = shading::smooth_lambert(sx * lx + sy * ly + sz * lz, offset[x]);
     const float hx = lx + ex, hy = ly + ey, hz = lz + ez;
     const float cos_half = (sx * hx + sy * hy + sz * hz) / std::sqrt(hx * hx + hy * hy + hz * hz);
     const float spec =
@@ -608,22 +622,39 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
   const int w = in_->options.width, h = in_->options.height;
   const std::size_t row = static_cast<std::size_t>(y) * w;
   const glm::vec3 ambient = scene.ambient;
-  for (int x = 0; x < w; ++x) {
-    const std::int32_t o = layer.object[row + x];
-    const bool seen = o >= 0;
-    const glm::vec3 normal =
-        seen ? normals_[static_cast<std::size_t>(o)][layer.face[row + x]] : glm::vec3(0.0f);
-    const glm::vec3 albedo =
-        seen ? scene.objects[static_cast<std::size_t>(o)].material.color : glm::vec3(0.0f);
-    out.nx[x] = normal.x, out.ny[x] = normal.y, out.nz[x] = normal.z;
-    out.ar[x] = albedo.x, out.ag[x] = albedo.y, out.ab[x] = albedo.z;
-    out.z[x] = seen ? depth[row + x] : 1.0f;  // the near plane: a finite point where none is
-    out.r[x] = ambient.x * albedo.x, out.g[x] = ambient.y * albedo.y,
-    out.b[x] = ambient.z * albedo.z;
-  }
   const float ndc_y = 1.0f - (float(y) + 0.5f) / float(h) * 2.0f;
   const RowPoints points{inv_vp[0] * (1.0f / float(w) - 1.0f) + inv_vp[1] * ndc_y + inv_vp[3],
                          inv_vp[0] * (2.0f / float(w)), inv_vp[2]};
+  for (int x = 0; x < w; ++x) {
+    const std::int32_t o = layer.object[row + x];
+    const bool seen = o >= 0;
+    const glm::vec3 albedo =
+        seen ? scene.objects[static_cast<std::size_t>(o)].material.color : glm::vec3(0.0f);
+    out.z[x] = seen ? depth[row + x] : 1.0f;  // the near plane: a finite point where none is
+    glm::vec3 normal(0.0f);
+    float offset = 0.0f;
+    if (seen) {
+      // The normal on the side the eye sees: the face's, or the corners' interpolated at the
+      // pixel's point, turned to the side the face shows (two-sided, as the face decides).
+      const std::size_t f = layer.face[row + x];
+      const glm::vec3 face = normals_[static_cast<std::size_t>(o)][f];
+      const glm::vec4 h_point = points.base + points.step * float(x) + points.along_z * out.z[x];
+      const glm::vec3 point = glm::vec3(h_point) / h_point.w;
+      const bool back = glm::dot(face, point) > 0.0f;  // the eye, the origin, behind the face
+      const SmoothFaces& smooth = smooth_[static_cast<std::size_t>(o)];
+      normal = face;
+      if (!smooth.corners.empty()) {
+        const shading::SmoothPoint at = shading::interpolate_smooth(
+            &smooth.corners[3 * f], &smooth.normals[3 * f], &smooth.offsets[3 * f], point, face);
+        normal = at.normal, offset = at.offset;
+      }
+      if (back) normal = -normal;
+    }
+    out.nx[x] = normal.x, out.ny[x] = normal.y, out.nz[x] = normal.z, out.offset[x] = offset;
+    out.ar[x] = albedo.x, out.ag[x] = albedo.y, out.ab[x] = albedo.z;
+    out.r[x] = ambient.x * albedo.x, out.g[x] = ambient.y * albedo.y,
+    out.b[x] = ambient.z * albedo.z;
+  }
   for (std::size_t l = 0; l < lights_at.size(); ++l) {
     // Only the pixels of the light's scissor: none beyond it is within the range.
     const raster::PixelRect& rect = in_->plan.reach[l].scissor;
@@ -638,9 +669,10 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
     (arriving ? add_light<true>
               : add_light<false>)(rect.x1 - rect.x0, from_x0, lights_at[l], light, falloff,
                                   out.z.data() + x0, out.nx.data() + x0, out.ny.data() + x0,
-                                  out.nz.data() + x0, out.ar.data() + x0, out.ag.data() + x0,
-                                  out.ab.data() + x0, &layer.shadowed[l][at], arriving,
-                                  out.r.data() + x0, out.g.data() + x0, out.b.data() + x0);
+                                  out.nz.data() + x0, out.offset.data() + x0, out.ar.data() + x0,
+                                  out.ag.data() + x0, out.ab.data() + x0, &layer.shadowed[l][at],
+                                  arriving, out.r.data() + x0, out.g.data() + x0,
+                                  out.b.data() + x0);
   }
 }
 

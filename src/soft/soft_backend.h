@@ -118,14 +118,22 @@ class SoftBackend final : public FrameBackend {
   // RenderOptions::tile_work_per_object: the frame's total (the target's tile work moves into it
   // and into the object's share after each volume).
   std::vector<raster::TileWork> total_work_, shadow_work_;
-  // Per object the frame shows: its faces' unit normals, eye-relative (shade).
+  // Per object the frame shows: its faces' unit normals, eye-relative (shade); for an object
+  // with shading normals (SceneObject::shading), its faces' corners and their normals too,
+  // eye-relative, 3 per face, to interpolate at each pixel.
   std::vector<std::uint8_t> seen_;
   std::vector<std::vector<glm::vec3>> normals_;
+  struct SmoothFaces {
+    std::vector<glm::vec3> corners, normals;
+    const float* offsets = nullptr;  // the object's, per corner
+  };
+  std::vector<SmoothFaces> smooth_;
   // One row of pixels being shaded, an array per component (shade_row).
   struct ShadeRow {
-    std::vector<float> nx, ny, nz, ar, ag, ab, z, r, g, b;
+    std::vector<float> nx, ny, nz, offset, ar, ag, ab, z, r, g, b;
     void resize(std::size_t n) {
-      for (std::vector<float>* v : {&nx, &ny, &nz, &ar, &ag, &ab, &z, &r, &g, &b}) v->resize(n);
+      for (std::vector<float>* v : {&nx, &ny, &nz, &offset, &ar, &ag, &ab, &z, &r, &g, &b})
+        v->resize(n);
     }
     glm::vec3 color(int x) const {
       const auto i = static_cast<std::size_t>(x);

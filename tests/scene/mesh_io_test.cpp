@@ -165,6 +165,29 @@ TEST(LoadMesh, AFileWithoutMaterialsGivesNone) {
   EXPECT_TRUE(loaded->triangle_material.empty());
 }
 
+TEST(LoadMesh, NormalsAreTheFilesElseACreaseAngles) {
+  auto given = load_mesh(kData / "normals.obj");
+  ASSERT_TRUE(given.ok()) << given.error().message;
+  ASSERT_EQ(given->corner_normals.size(), 6u);
+  for (const glm::vec3& n : given->corner_normals)
+    EXPECT_NEAR(glm::distance(n, glm::vec3(0.6f, 0.8f, 0.0f)), 0.0f, 1e-6f);
+  // Without normals in the file: a cube's corners keep their faces' (its edges are creases).
+  auto cube = load_mesh(kData / "cube_quads.obj");
+  ASSERT_TRUE(cube.ok()) << cube.error().message;
+  ASSERT_EQ(cube->corner_normals.size(), cube->mesh.indices.size());
+  const Mesh& m = cube->mesh;
+  for (std::size_t c = 0; c < m.indices.size(); ++c) {
+    const std::uint32_t* v = &m.indices[3 * (c / 3)];
+    const glm::vec3 face = glm::normalize(
+        glm::cross(m.positions[v[1]] - m.positions[v[0]], m.positions[v[2]] - m.positions[v[0]]));
+    EXPECT_NEAR(glm::distance(cube->corner_normals[c], face), 0.0f, 1e-6f) << c;
+  }
+  // A node's transform turns them: instanced.gltf's parent scales by 2 (no turn, unit length).
+  auto placed = load_mesh(kData / "instanced.gltf");
+  ASSERT_TRUE(placed.ok()) << placed.error().message;
+  for (const glm::vec3& n : placed->corner_normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-6f);
+}
+
 struct BadFile {
   const char* file;
   const char* message;  // what the error must say after "<path>: "

@@ -23,6 +23,8 @@ TEST(SceneFile, TheShippedExampleLoads) {
   ASSERT_EQ(scene->objects.size(), 4u);
   EXPECT_EQ(scene->objects[1].name, "knot");
   EXPECT_EQ(scene->objects[1].mesh->triangle_count(), 5760u);  // meshes/ relative to the file
+  EXPECT_NE(smooth_shading(scene->objects[1]), nullptr);       // a mesh file's object shades smooth
+  EXPECT_EQ(scene->objects[0].shading, nullptr);               // a shape, flat
   ASSERT_EQ(scene->lights.size(), 2u);
   EXPECT_EQ(scene->lights[1].position.w, 0.0f);  // "direction": a directional light
 }

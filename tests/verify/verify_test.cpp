@@ -680,10 +680,11 @@ TEST(TransparentCasters, CompareCatchesWrongLight) {
 // pixel (the corridor's trusses at this size) may cover one rasterizer's pixel centre and not the
 // other's, with no boundary among the other frame's neighbours. Any difference at all is
 // reported. Their pictures agree away from such boundaries.
-TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
-  for (const std::string& name : testing::builtin_scenes_at_test_size()) {
-    auto scene = builtin_scene(name);
-    ASSERT_TRUE(scene.ok());
+// Soft and every gl variant: the same surfaces and masks (outside the one-pixel band) and the
+// same picture, to within rounding, where the surfaces, masks and light are even.
+void expect_parity(const std::string& name, const Scene& scene_in) {
+  {
+    const Scene* scene = &scene_in;
     const RenderOptions options{kWidth, kHeight, Method::automatic, Generator::automatic};
     const Frame soft = render(kSoft, *scene, options);
     for (const Variant& v : {kGlCpu, kGlGpu, kGlVs}) {
@@ -740,6 +741,46 @@ TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
         }
       EXPECT_EQ(colour_differs, 0u) << name << " " << v.name << ": the pictures differ";
     }
+  }
+}
+
+TEST(Parity, SoftAndGlAgreeOnTheShadowMask) {
+  for (const std::string& name : testing::builtin_scenes_at_test_size()) {
+    auto scene = builtin_scene(name);
+    ASSERT_TRUE(scene.ok());
+    expect_parity(name, *scene);
+  }
+}
+
+// Smooth shading (a mesh file's crease-angle normals) computed alike in both backends.
+TEST(Parity, SmoothShadingAgrees) {
+  auto loaded = load_scene(std::string(SHADOWVOL_SOURCE_DIR) + "/scenes/meshes/torus_knot.obj");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_NE(smooth_shading(loaded->scene.objects[0]), nullptr);
+  expect_parity("torus_knot.obj", loaded->scene);
+}
+
+// Shading normals change the light, never the shadows: the same surfaces and masks as flat.
+TEST(SmoothShading, ChangesTheLightNotTheShadows) {
+  auto loaded = load_scene(std::string(SHADOWVOL_SOURCE_DIR) + "/scenes/meshes/torus_knot.obj");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  Scene flat = loaded->scene;
+  flat.objects[0].shading = nullptr;
+  const RenderOptions options{kWidth, kHeight, Method::automatic, Generator::automatic};
+  for (const Variant& v : {kSoft, kGlCpu}) {
+    const Frame smooth_frame = render(v, loaded->scene, options);
+    const Frame flat_frame = render(v, flat, options);
+    EXPECT_EQ(smooth_frame.object, flat_frame.object) << v.name;
+    EXPECT_EQ(smooth_frame.shadowed, flat_frame.shadowed) << v.name;
+    std::size_t knot = 0, changed = 0;
+    for (std::size_t p = 0; p < smooth_frame.object.size(); ++p) {
+      if (smooth_frame.object[p] != 0) continue;
+      ++knot;
+      changed += !std::equal(&smooth_frame.image.rgba[4 * p], &smooth_frame.image.rgba[4 * p + 3],
+                             &flat_frame.image.rgba[4 * p]);
+    }
+    EXPECT_GT(knot, 500u) << v.name;
+    EXPECT_GT(changed, knot / 2) << v.name << ": smooth shading changed too little";
   }
 }
 
