@@ -99,6 +99,10 @@ struct GlBackend::MeshBuffers {
   // corner the normal and its terminator offset (w); null source: flat.
   std::shared_ptr<const ShadingNormals> corner_normals_source;
   Object corner_normals;
+  // The texture coordinates of the object last drawn with this mesh (SceneObject::uvs), vec2
+  // per corner; null source: none.
+  std::shared_ptr<const std::vector<glm::vec2>> uvs_source;
+  Object uvs;
   Object vao = make_vertex_array();
   GLsizei index_count = 0;
   Object adjacency_positions, adjacency_indices, adjacency_vao;
@@ -458,6 +462,32 @@ GlBackend::MeshBuffers& GlBackend::mesh_buffers(const SceneObject& object) {
                          static_cast<GLsizeiptr>(corners.size() * sizeof(glm::vec4)),
                          corners.data(), 0);
   }
+  const std::vector<glm::vec2>* uvs = texture_coordinates(object);
+  if (!uvs) {
+    m.uvs_source.reset();
+  } else if (m.uvs_source != object.uvs) {
+    m.uvs_source = object.uvs;
+    m.uvs = make_buffer();
+    glNamedBufferStorage(m.uvs.get(), static_cast<GLsizeiptr>(uvs->size() * sizeof(glm::vec2)),
+                         uvs->data(), 0);
+  }
+  if (uvs) {
+    const std::shared_ptr<const Texture>& map = object.material.base_color_map;
+    GlTexture& t = textures_[map.get()];
+    if (!t.source) {
+      t.source = map;
+      t.texture = make_texture(GL_TEXTURE_2D);
+      glTextureStorage2D(t.texture.get(), 1, GL_SRGB8_ALPHA8, map->width, map->height);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTextureSubImage2D(t.texture.get(), 0, 0, 0, map->width, map->height, GL_RGBA,
+                          GL_UNSIGNED_BYTE, map->rgba.data());
+      glTextureParameteri(t.texture.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(t.texture.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(t.texture.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTextureParameteri(t.texture.get(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    }
+    t.used = true;
+  }
   m.used = true;
   return m;
 }
@@ -582,13 +612,17 @@ void GlBackend::begin_frame(const FrameInputs& inputs) {
     assert(targets_->complete());
   }
   for (auto& [topology, buffers] : meshes_) buffers->used = false;
+  for (auto& [texture, gl_texture] : textures_) gl_texture.used = false;
   frame_meshes_.clear();
   transparent_.clear();
+  textured_.clear();
   for (std::uint32_t o = 0; o < inputs.scene.objects.size(); ++o) {
     frame_meshes_.push_back(&mesh_buffers(inputs.scene.objects[o]));
+    textured_.push_back(frame_meshes_.back()->uvs_source != nullptr);
     if (inputs.plan.transparent(o)) transparent_.push_back(o);
   }
   std::erase_if(meshes_, [](const auto& entry) { return !entry.second->used; });
+  std::erase_if(textures_, [](const auto& entry) { return !entry.second.used; });
   cpu_ = settings_.volumes == VolumePath::cpu;
   gs_ = settings_.volumes == VolumePath::gpu;
   uploads_.resize(std::max(uploads_.size(), inputs.scene.lights.size()));
@@ -659,9 +693,9 @@ void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
     g.draws.clear();
     for (const std::uint32_t o : objects) {
       const SceneGeometry::Place at = g.places.at(frame_meshes_[o]);
-      g.object_data[o] = {plan.view_proj * plan.objects[o].model,
-                          glm::uvec4(plan.objects[o].first_id),
-                          glm::vec4(scene.objects[o].material.color, 1.0f)};
+      g.object_data[o] = {
+          plan.view_proj * plan.objects[o].model, glm::uvec4(plan.objects[o].first_id),
+          glm::vec4(textured_[o] ? glm::vec3(0.0f) : scene.objects[o].material.color, 1.0f)};
       g.draws.push_back(
           {GLuint(frame_meshes_[o]->index_count), 1, at.first_index, at.base_vertex, o});
     }
@@ -682,12 +716,14 @@ void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
   glUniform1i(glsl::kVisibleOnly, GL_FALSE);
   draw_surfaces(objects, [&](std::size_t o) {
     glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
-    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(scene.objects[o].material.color));
+    const glm::vec3 albedo = textured_[o] ? glm::vec3(0.0f) : scene.objects[o].material.color;
+    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(albedo));
   });
   glDepthMask(GL_FALSE);
 }
 
 void GlBackend::end_depth() {
+  ambient_textured(layer_);
   if (layer_ == Layer::opaque) return;
   const Scene& scene = in_->scene;
   const FramePlan& plan = in_->plan;
@@ -702,7 +738,8 @@ void GlBackend::end_depth() {
   glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
   draw_surfaces(drawn_[static_cast<int>(Layer::glass)], [&](std::size_t o) {
     const Material& material = scene.objects[o].material;
-    const glm::vec3 reflected = material.opacity * material.color;
+    const glm::vec3 reflected =
+        textured_[o] ? glm::vec3(0.0f) : material.opacity * material.color;  // ambient_textured
     glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
     glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(reflected));
   });
@@ -1300,26 +1337,10 @@ void GlBackend::light_pass(std::size_t l, Layer layer) {
   glUniform2f(glsl::kFalloff, falloff.inv_range2, falloff.inverse_square);
   scissor(l);
   auto lit = [&](std::size_t o) {
-    const Material& material = scene.objects[o].material;
-    const glm::mat4& model = plan.objects[o].model;
-    const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model))));
     // A transparent surface reflects its opacity's share; the rest passes (the filter pass).
-    const glm::vec3 reflected = radiance * (glass_layer ? material.opacity : 1.0f);
-    glUniformMatrix4fv(glsl::kModel, 1, GL_FALSE, glm::value_ptr(model));
-    glUniformMatrix3fv(glsl::kNormalMatrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
-    glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(material.color));
+    const glm::vec3 reflected = radiance * (glass_layer ? scene.objects[o].material.opacity : 1.0f);
     glUniform3fv(glsl::kRadiance, 1, glm::value_ptr(reflected));
-    glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
-    const MeshBuffers& m = *frame_meshes_[o];
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kFaceNormalsBinding, m.normals.get());
-    const bool smooth = m.corner_normals_source != nullptr;
-    glUniform1i(glsl::kSmoothNormals, smooth);
-    if (smooth) {
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kPositionsBinding, m.positions.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kIndicesBinding, m.indices.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kCornerNormalsBinding,
-                       m.corner_normals.get());
-    }
+    bind_surface(o);
   };
   // The objects that receive shadows by the counts; then those that do not, lit whatever the
   // counts say (SceneObject::receives_shadows).
@@ -1338,6 +1359,60 @@ void GlBackend::light_pass(std::size_t l, Layer layer) {
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_STENCIL_TEST);
+  glDepthFunc(GL_GREATER);
+}
+
+void GlBackend::bind_surface(std::size_t o) {
+  const FramePlan& plan = in_->plan;
+  const Material& material = in_->scene.objects[o].material;
+  const glm::mat4& model = plan.objects[o].model;
+  const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model))));
+  glUniformMatrix4fv(glsl::kModel, 1, GL_FALSE, glm::value_ptr(model));
+  glUniformMatrix3fv(glsl::kNormalMatrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+  glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(material.color));
+  glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
+  const MeshBuffers& m = *frame_meshes_[o];
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kFaceNormalsBinding, m.normals.get());
+  const bool smooth = m.corner_normals_source != nullptr, textured = textured_[o] != 0;
+  glUniform1i(glsl::kSmoothNormals, smooth);
+  glUniform1i(glsl::kTextured, textured);
+  if (smooth || textured) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kPositionsBinding, m.positions.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kIndicesBinding, m.indices.get());
+  }
+  if (smooth)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kCornerNormalsBinding, m.corner_normals.get());
+  if (textured) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kUvsBinding, m.uvs.get());
+    glBindTextureUnit(glsl::kBaseColorUnit,
+                      textures_.at(material.base_color_map.get()).texture.get());
+  }
+}
+
+// The ambient term of the textured surfaces of a layer (opacity times it on the glass layer),
+// where each is the surface left visible: the lit program, without lights or masks.
+void GlBackend::ambient_textured(Layer layer) {
+  const Scene& scene = in_->scene;
+  surfaces_.clear();
+  for (const std::uint32_t o : drawn_[static_cast<int>(layer)])
+    if (textured_[o]) surfaces_.push_back(o);
+  if (surfaces_.empty()) return;
+  Targets& t = *targets_;
+  glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);
+  glBindTextureUnit(2, t.ids.get());  // read, not written: attachment 0 is off
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glDepthFunc(GL_EQUAL);
+  glUseProgram(surface_lit_[gs_ ? 1 : 0].get());
+  glUniform1i(glsl::kAmbientOnly, GL_TRUE);
+  draw_surfaces(surfaces_, [&](std::size_t o) {
+    const float share = layer == Layer::glass ? scene.objects[o].material.opacity : 1.0f;
+    const glm::vec3 radiance = share * scene.ambient;
+    glUniform3fv(glsl::kRadiance, 1, glm::value_ptr(radiance));
+    bind_surface(o);
+  });
+  glUniform1i(glsl::kAmbientOnly, GL_FALSE);
+  glDisable(GL_BLEND);
   glDepthFunc(GL_GREATER);
 }
 

@@ -163,6 +163,18 @@ class GlBackend final : public FrameBackend {
   Object fill_query_ = make_query(GL_SAMPLES_PASSED);
   std::unique_ptr<Targets> targets_;
   std::unordered_map<const Topology*, std::unique_ptr<MeshBuffers>> meshes_;
+  // Material::base_color_map as textures (sRGB, bilinear, repeating), kept while in use.
+  struct GlTexture {
+    std::shared_ptr<const Texture> source;
+    Object texture;
+    bool used = false;
+  };
+  std::unordered_map<const Texture*, GlTexture> textures_;
+  std::vector<std::uint8_t> textured_;  // per object of the frame: drawn with its texture
+  // Per object: the lit program's uniforms and buffers of its surface (not the light's).
+  void bind_surface(std::size_t object);
+  // The ambient term of the layer's textured surfaces, which the depth pass left out.
+  void ambient_textured(Layer layer);
   std::vector<std::vector<std::unique_ptr<VolumeUpload>>> uploads_;  // [light][object]
 
   std::vector<Object> queries_;  // the pool; the frame's are [0, queries_used_)
@@ -185,6 +197,7 @@ class GlBackend final : public FrameBackend {
   // transparent object (what is seen through).
   std::vector<std::uint32_t> drawn_[2], transparent_;
   std::vector<std::uint32_t> receivers_, non_receivers_;  // of a lit pass's layer
+  std::vector<std::uint32_t> surfaces_;                   // of ambient_textured
   // Read-back scratch, kept between frames.
   std::vector<std::uint32_t> read_ids_, read_rows_;
   std::vector<float> read_counts_;

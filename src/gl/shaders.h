@@ -22,11 +22,13 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
                      kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
                      kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25,
-                     kSmoothNormals = 26;
+                     kSmoothNormals = 26, kTextured = 27, kAmbientOnly = 28;
 
 // Shader storage bindings of the lit pass.
 inline constexpr int kFaceNormalsBinding = 0, kPositionsBinding = 1, kIndicesBinding = 2,
-                     kCornerNormalsBinding = 3;
+                     kCornerNormalsBinding = 3, kUvsBinding = 5;
+// The lit pass's texture unit for Material::base_color_map (units 0-2: counts, light map, ids).
+inline constexpr int kBaseColorUnit = 3;
 
 // The vertices of a face in the vertex shader's volume mesh (kVolumeExtrusionVertex).
 inline constexpr int kVertexVolumeCorners = 24;
@@ -156,6 +158,12 @@ layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 3) readonly buffer CornerNormals { vec4 corner_normals[]; };
 layout(location = 26) uniform bool smooth_normals;
+// A texture (Material::base_color_map, sRGB, bilinear, repeating): the corners' coordinates.
+layout(std430, binding = 5) readonly buffer Uvs { vec2 uvs[]; };
+layout(location = 27) uniform bool textured;
+layout(binding = 3) uniform sampler2D base_color_map;
+// The ambient term of a textured surface (its depth pass wrote none): radiance * albedo here.
+layout(location = 28) uniform bool ambient_only;
 layout(location = 1) uniform mat4 model;  // eye-relative
 layout(location = 2) uniform mat3 normal_matrix;
 layout(location = 8) uniform vec3 albedo;
@@ -174,34 +182,48 @@ layout(location = 1) out vec4 color;
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   if (texelFetch(visible_ids, pixel, 0).r != first_id + uint(gl_PrimitiveID) + 1u) discard;
+  // Where needed, the point's barycentric coordinates in its face (render/shading.h).
+  vec3 eye_position = surface.eye_position;
+  vec3 w = vec3(0.0);
+  bool inside = false;
+  if (smooth_normals || textured) {
+    vec3 c[3];
+    for (int k = 0; k < 3; ++k)
+      c[k] = (model * positions[indices[3 * gl_PrimitiveID + k]]).xyz;
+    vec3 across = cross(c[1] - c[0], c[2] - c[0]);
+    if (dot(across, across) > 0.0) {
+      w = vec3(max(0.0, dot(cross(c[2] - c[1], eye_position - c[1]), across)),
+               max(0.0, dot(cross(c[0] - c[2], eye_position - c[2]), across)),
+               max(0.0, dot(cross(c[1] - c[0], eye_position - c[0]), across)));
+      float sum = w.x + w.y + w.z;
+      inside = sum > 0.0;
+      if (inside) w /= sum;
+    }
+  }
+  vec3 surface_albedo = albedo;
+  if (textured && inside) {
+    int corner = 3 * gl_PrimitiveID;
+    vec2 uv = w.x * uvs[corner] + w.y * uvs[corner + 1] + w.z * uvs[corner + 2];
+    surface_albedo *= textureLod(base_color_map, vec2(uv.x, 1.0 - uv.y), 0.0).rgb;
+  }
+  if (ambient_only) {
+    color = vec4(radiance * surface_albedo, 0.0);
+    return;
+  }
   if (count_texture && texelFetch(counts, ivec2(gl_FragCoord.xy), 0).r != 0.0) discard;
   vec3 arriving = light_map ? exp(texelFetch(log_light, ivec2(gl_FragCoord.xy), 0).rgb) : vec3(1.0);
   vec3 face = normal_matrix * normals[gl_PrimitiveID].xyz;
   face = length(face) > 0.0 ? normalize(face) : vec3(0.0, 1.0, 0.0);
-  vec3 eye_position = surface.eye_position;
   vec3 to_eye = normalize(-eye_position);  // the eye is the origin
   vec3 n = face;
   float offset = 0.0;
-  if (smooth_normals) {
-    vec3 c[3], cn[3];
-    float t[3];
-    for (int k = 0; k < 3; ++k) {
-      int corner = 3 * gl_PrimitiveID + k;
-      c[k] = (model * positions[indices[corner]]).xyz;
-      cn[k] = normal_matrix * corner_normals[corner].xyz;
-      t[k] = corner_normals[corner].w;
-    }
-    vec3 across = cross(c[1] - c[0], c[2] - c[0]);
-    if (dot(across, across) > 0.0) {
-      vec3 w = vec3(max(0.0, dot(cross(c[2] - c[1], eye_position - c[1]), across)),
-                    max(0.0, dot(cross(c[0] - c[2], eye_position - c[2]), across)),
-                    max(0.0, dot(cross(c[1] - c[0], eye_position - c[0]), across)));
-      vec3 mixed = w.x * cn[0] + w.y * cn[1] + w.z * cn[2];
-      float sum = w.x + w.y + w.z;
-      if (length(mixed) > 0.0 && sum > 0.0) {
-        n = normalize(mixed);
-        offset = dot(w, vec3(t[0], t[1], t[2])) / sum;
-      }
+  if (smooth_normals && inside) {
+    int corner = 3 * gl_PrimitiveID;
+    vec4 a = corner_normals[corner], b = corner_normals[corner + 1], d = corner_normals[corner + 2];
+    vec3 mixed = normal_matrix * (w.x * a.xyz + w.y * b.xyz + w.z * d.xyz);
+    if (length(mixed) > 0.0) {
+      n = normalize(mixed);
+      offset = dot(w, vec3(a.w, b.w, d.w));
     }
   }
   if (dot(face, to_eye) < 0.0) n = -n;  // two-sided: light the side we see, as the face shows
@@ -214,7 +236,8 @@ void main() {
   float lambert = (dot(n, to_light) - offset) / (1.0 - offset);
   if (lambert <= 0.0 || reaching <= 0.0) discard;
   float spec = pow(max(0.0, dot(n, normalize(to_light + to_eye))), shininess);
-  color = vec4(reaching * radiance * arriving * (albedo * lambert + vec3(specular * spec)), 0.0);
+  color = vec4(reaching * radiance * arriving * (surface_albedo * lambert + vec3(specular * spec)),
+               0.0);
 }
 )";
 

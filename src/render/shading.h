@@ -10,7 +10,10 @@
 #include <cstdint>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+
+#include "scene/scene.h"
 
 namespace shadowvol::shading {
 
@@ -45,29 +48,40 @@ inline float falloff(float d2, const Falloff& f) {
   return window * window / (1.0f + d2 * f.inverse_square);
 }
 
-// Smooth shading at `point` of a face with corners c[0..2], corner normals n[0..2] (one space,
-// any length) and terminator offsets t[0..2] (core/shading_normals.h): both interpolated by the
-// point's barycentric coordinates, those below 0 taken as 0 (a pixel's point may stray past an
-// edge by rounding; nothing outside the corners' span). The normal is unit length, or `face`
-// where the normals cancel or the face has no area. The OpenGL backend's lit shader computes
-// the same.
+// The barycentric coordinates of `point` in the face with corners c[0..2], those below 0 taken
+// as 0 (a pixel's point may stray past an edge by rounding: nothing outside the corners' span),
+// scaled to sum to 1; false where the face has no area or the point lies beyond a corner.
+inline bool barycentric(const glm::vec3* c, glm::vec3 point, glm::vec3& weights) {
+  const glm::vec3 across = glm::cross(c[1] - c[0], c[2] - c[0]);
+  if (!(glm::dot(across, across) > 0.0f)) return false;
+  const glm::vec3 w(std::max(0.0f, glm::dot(glm::cross(c[2] - c[1], point - c[1]), across)),
+                    std::max(0.0f, glm::dot(glm::cross(c[0] - c[2], point - c[2]), across)),
+                    std::max(0.0f, glm::dot(glm::cross(c[1] - c[0], point - c[0]), across)));
+  const float sum = w.x + w.y + w.z;
+  if (!(sum > 0.0f) || !std::isfinite(sum)) return false;
+  weights = w / sum;
+  return true;
+}
+
+// Smooth shading with barycentric weights w: the corner normals n[0..2] (one space, any length)
+// and terminator offsets t[0..2] (core/shading_normals.h) interpolated. The normal is unit
+// length, or `face` where the normals cancel. The OpenGL backend's lit shader computes the same.
 struct SmoothPoint {
   glm::vec3 normal;
   float offset;
 };
-inline SmoothPoint interpolate_smooth(const glm::vec3* c, const glm::vec3* n, const float* t,
-                                      glm::vec3 point, glm::vec3 face) {
-  const glm::vec3 across = glm::cross(c[1] - c[0], c[2] - c[0]);
-  const float area2 = glm::dot(across, across);
-  if (!(area2 > 0.0f)) return {face, 0.0f};
-  const float w0 = std::max(0.0f, glm::dot(glm::cross(c[2] - c[1], point - c[1]), across));
-  const float w1 = std::max(0.0f, glm::dot(glm::cross(c[0] - c[2], point - c[2]), across));
-  const float w2 = std::max(0.0f, glm::dot(glm::cross(c[1] - c[0], point - c[0]), across));
-  const glm::vec3 mixed = w0 * n[0] + w1 * n[1] + w2 * n[2];
-  const float len = glm::length(mixed), sum = w0 + w1 + w2;
-  if (!(len > 0.0f && std::isfinite(len) && sum > 0.0f)) return {face, 0.0f};
-  return {mixed / len, (w0 * t[0] + w1 * t[1] + w2 * t[2]) / sum};
+inline SmoothPoint interpolate_smooth(glm::vec3 w, const glm::vec3* n, const float* t,
+                                      glm::vec3 face) {
+  const glm::vec3 mixed = w.x * n[0] + w.y * n[1] + w.z * n[2];
+  const float len = glm::length(mixed);
+  if (!(len > 0.0f && std::isfinite(len))) return {face, 0.0f};
+  return {mixed / len, w.x * t[0] + w.y * t[1] + w.z * t[2]};
 }
+
+// A texture's colour at texture coordinates uv (Texture: bilinear in linear light, repeating, v
+// up), linear RGB; white where the texture holds no pixels.
+glm::vec3 sample_texture(const Texture& texture, glm::vec2 uv);
+
 // The Lambert term of smooth shading, the terminator offset taken off (1 stays 1; offset 0: as
 // flat shading).
 inline float smooth_lambert(float cos_light, float offset) {

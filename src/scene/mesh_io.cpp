@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include <glm/common.hpp>
@@ -23,6 +24,7 @@
 #include "core/shading_normals.h"
 #include "core/volume.h"
 #include "scene/declared_size.h"
+#include "scene/texture_io.h"
 
 namespace shadowvol {
 namespace {
@@ -134,6 +136,11 @@ struct Gather {
         dst.indices.push_back(static_cast<std::uint32_t>(base + face.mIndices[k]));
         out->corner_normals.push_back(
             face.mIndices[k] < m->mNumVertices ? file_normal(face.mIndices[k]) : glm::vec3(0.0f));
+        constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+        const aiVector3D* uv = m->mTextureCoords[0];
+        out->corner_uvs.push_back(uv && face.mIndices[k] < m->mNumVertices
+                                      ? glm::vec2(uv[face.mIndices[k]].x, uv[face.mIndices[k]].y)
+                                      : glm::vec2(kNone));
       }
       out->triangle_material.push_back(m->mMaterialIndex);
     }
@@ -150,6 +157,48 @@ struct Gather {
     return {m.a4, m.b4, m.c4};
   }
 };
+
+// The material's base colour map, read from a file beside the mesh or from the file itself
+// (assimp names an embedded texture "*N"); null, with a warning in `warnings`, where it cannot.
+std::shared_ptr<const Texture> base_color_map(const aiScene& scene, const aiMaterial& m,
+                                              const std::filesystem::path& mesh_file,
+                                              std::vector<std::string>& warnings) {
+  aiString name;
+  if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS &&
+      m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS)
+    return nullptr;
+  const std::string file = name.C_Str();
+  Expected<Texture> texture = make_error("");
+  if (const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str())) {
+    const std::string source = mesh_file.string() + " (embedded " + file + ")";
+    if (embedded->mHeight == 0) {  // compressed: mWidth bytes of an image file
+      texture = decode_texture(reinterpret_cast<const std::uint8_t*>(embedded->pcData),
+                               embedded->mWidth, source);
+    } else if (embedded->mWidth <= unsigned(kMaxTextureSide) &&
+               embedded->mHeight <= unsigned(kMaxTextureSide)) {
+      Texture raw{int(embedded->mWidth), int(embedded->mHeight), {}, source};
+      for (std::size_t i = 0; i < std::size_t(embedded->mWidth) * embedded->mHeight; ++i) {
+        const aiTexel& t = embedded->pcData[i];
+        raw.rgba.insert(raw.rgba.end(), {t.r, t.g, t.b, t.a});
+      }
+      texture = std::move(raw);
+    } else {
+      texture = make_error(source + ": larger than " + std::to_string(kMaxTextureSide) +
+                           " pixels a side");
+    }
+  } else {
+    std::filesystem::path path(file);
+    if (path.is_relative()) path = mesh_file.parent_path() / path;
+    texture = load_texture(path);
+  }
+  if (!texture) {
+    warnings.push_back(mesh_file.string() + ": material '" + m.GetName().C_Str() +
+                       "': its texture is left out (" + texture.error().message +
+                       "); drawn in its base colour");
+    return nullptr;
+  }
+  return std::make_shared<const Texture>(std::move(*texture));
+}
 
 Material material_of(const aiMaterial& m) {
   Material out;
@@ -173,7 +222,7 @@ Material material_of(const aiMaterial& m) {
 
 // The materials the triangles use, where any is the file's own (not assimp's default); else
 // none, and the triangles' indices are dropped.
-void gather_materials(const aiScene& scene, LoadedMesh& out) {
+void gather_materials(const aiScene& scene, const std::filesystem::path& file, LoadedMesh& out) {
   bool own = false;
   for (std::uint32_t index : out.triangle_material)
     if (index < scene.mNumMaterials &&
@@ -181,6 +230,7 @@ void gather_materials(const aiScene& scene, LoadedMesh& out) {
       own = true;
   if (!own) {
     out.triangle_material.clear();
+    out.corner_uvs.clear();
     return;
   }
   // The materials in use, in the file's order, and each triangle's index among them.
@@ -192,6 +242,8 @@ void gather_materials(const aiScene& scene, LoadedMesh& out) {
       slot[i] = static_cast<std::uint32_t>(out.materials.size());
       out.materials.push_back(
           {scene.mMaterials[i]->GetName().C_Str(), material_of(*scene.mMaterials[i])});
+      out.materials.back().material.base_color_map =
+          base_color_map(scene, *scene.mMaterials[i], file, out.warnings);
     }
   if (slot[scene.mNumMaterials] == 0) {  // an index past the file's materials: a default one
     slot[scene.mNumMaterials] = static_cast<std::uint32_t>(out.materials.size());
@@ -263,11 +315,11 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
   if (auto fits = check_declared_size(path, size); !ec && !fits) return fits.error();
 
   Assimp::Importer importer;
-  // Positions, normals, faces, materials, cameras and lights: ask assimp for nothing else.
+  // Positions, normals, texture coordinates, faces, materials, textures, cameras and lights: ask
+  // assimp for nothing else.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
                               aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
-                                  aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS |
-                                  aiComponent_ANIMATIONS | aiComponent_TEXTURES);
+                                  aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS);
   if (progress) importer.SetProgressHandler(new ProgressForwarder(progress));
   const aiScene* scene = nullptr;
   try {
@@ -293,7 +345,21 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
   Gather gather{scene, &loaded, {}, {}};
   gather.node(scene->mRootNode, aiMatrix4x4());
   if (!gather.error.empty()) return make_error(name + ": " + gather.error);
-  gather_materials(*scene, loaded);
+  gather_materials(*scene, path, loaded);
+  // A map on triangles without texture coordinates has nothing to be sampled at.
+  for (std::size_t t = 0; t < loaded.triangle_material.size() && !loaded.corner_uvs.empty(); ++t) {
+    Material& material = loaded.materials[loaded.triangle_material[t]].material;
+    if (material.base_color_map && std::isnan(loaded.corner_uvs[3 * t].x)) {
+      material.base_color_map = nullptr;
+      loaded.warnings.push_back(name + ": material '" +
+                                loaded.materials[loaded.triangle_material[t]].name +
+                                "': its texture is left out (its triangles have no texture "
+                                "coordinates); drawn in its base colour");
+    }
+  }
+  if (std::none_of(loaded.materials.begin(), loaded.materials.end(),
+                   [](const FileMaterial& m) { return m.material.base_color_map != nullptr; }))
+    loaded.corner_uvs.clear();
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   gather_cameras_and_lights(*scene, gather, extension == ".gltf" || extension == ".glb", loaded);

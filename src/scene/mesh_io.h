@@ -14,6 +14,8 @@
 #include "core/mesh.h"
 #include "scene/scene.h"
 
+#include <glm/vec2.hpp>
+
 namespace shadowvol {
 
 // What a file says besides its triangles, by the names it gives them.
@@ -39,6 +41,9 @@ struct LoadedMesh {
   // Per corner of `mesh` (as mesh.indices), the shading normal: the file's vertex normal where
   // it gives one, else crease_normals' at kDefaultCreaseDegrees (core/shading_normals.h).
   std::vector<glm::vec3> corner_normals;
+  // Per corner, the texture coordinates of the file's first set (v up), NaN where its mesh has
+  // none; empty where no material has a texture.
+  std::vector<glm::vec2> corner_uvs;
   std::vector<FileCamera> cameras;    // perspective cameras, in the file's order
   std::vector<FileLight> lights;      // point, spot (as points) and directional lights
   std::size_t points_ignored = 0;     // point primitives in the file (not casters)
@@ -53,7 +58,10 @@ struct LoadedMesh {
 // base colour factor; else the diffuse colour: OBJ/MTL Kd, COLLADA, FBX) and opacity (the
 // material's opacity, MTL d; glTF's base colour alpha where its alpha mode is BLEND; 1 - glTF's
 // transmission factor), linear RGB. Normals: the file's, turned by the inverse transpose of
-// their node's transform, a crease angle's where it has none. Cameras: placed by their nodes, the
+// their node's transform, a crease angle's where it has none. Textures: the base colour map
+// (glTF's base colour texture, else the diffuse one: MTL map_Kd, COLLADA, FBX), from a file
+// beside the mesh or embedded in it; one that cannot be read is left out with a warning, the
+// material keeping its colour. Cameras: placed by their nodes, the
 // vertical field of view from assimp's horizontal one and the aspect. Lights (glTF
 // KHR_lights_punctual, COLLADA, FBX): their colour, normalised to a largest channel of 1, at
 // intensity 1 (files give intensities in units of their own); spot lights cast as point lights.

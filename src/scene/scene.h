@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -27,9 +29,21 @@ namespace shadowvol {
 // (opacity < 1) passes the fraction (1 - opacity) * color of it, per channel, and a light crossing
 // n such surfaces keeps that fraction to the power n (Kim, Kim & Turk 2008 §2): a colored,
 // partial shadow. Casters of one material form one group, counted together.
+// An image a surface takes its colour from: 8-bit sRGB, rows from the top (as image files hold
+// them), sampled bilinearly in linear light, repeating beyond [0, 1) (glTF's default wrap).
+struct Texture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // width * height * 4
+  std::string source;              // where it came from, for messages
+};
+
 struct Material {
   glm::vec3 color{0.8f};  // linear RGB albedo, and the filter colour of a transparent surface
   float opacity = 1.0f;   // in [0, 1]
+  // The albedo is color times this map's colour at the surface's texture coordinates
+  // (SceneObject::uvs); the light a transparent surface passes is not: shadows stay the
+  // material's colour, as the reference traces them.
+  std::shared_ptr<const Texture> base_color_map = nullptr;
 
   bool transparent() const { return opacity < 1.0f; }
   glm::vec3 transmittance() const { return (1.0f - opacity) * color; }
@@ -80,6 +94,9 @@ struct SceneObject {
   // terminator offset (core/shading_normals.h); null, or any count but one per corner: flat,
   // each face its own normal. Shading only: shadows are the geometry's.
   std::shared_ptr<const ShadingNormals> shading = nullptr;
+  // Per triangle corner, texture coordinates for material.base_color_map (v up: row 0 of the
+  // image at v = 1); null, or any count but one per corner: no texture.
+  std::shared_ptr<const std::vector<glm::vec2>> uvs = nullptr;
 };
 // The object's shading normals where it has them for every corner, else null (flat).
 inline const ShadingNormals* smooth_shading(const SceneObject& object) {
@@ -87,6 +104,15 @@ inline const ShadingNormals* smooth_shading(const SceneObject& object) {
   return s && object.mesh && s->normals.size() == object.mesh->indices.size() &&
                  s->offsets.size() == s->normals.size()
              ? s
+             : nullptr;
+}
+// The object's texture coordinates where it has a map and coordinates for every corner, else
+// null (the material's colour alone).
+inline const std::vector<glm::vec2>* texture_coordinates(const SceneObject& object) {
+  const std::vector<glm::vec2>* uv = object.uvs.get();
+  return uv && object.material.base_color_map && object.mesh &&
+                 uv->size() == object.mesh->indices.size()
+             ? uv
              : nullptr;
 }
 // Shading normals for the object's mesh from per-corner normals (null where there are none).

@@ -459,6 +459,7 @@ Scene file_scene(const std::string& name, LoadedMesh loaded) {
     // An object per material, each with the vertices its triangles use.
     std::vector<Mesh> parts(loaded.materials.size());
     std::vector<std::vector<glm::vec3>> normals(parts.size());
+    std::vector<std::vector<glm::vec2>> uvs(parts.size());
     std::vector<std::vector<std::uint32_t>> remap(parts.size());
     for (std::size_t t = 0; t < loaded.triangle_material.size(); ++t) {
       const std::uint32_t m = loaded.triangle_material[t];
@@ -466,6 +467,8 @@ Scene file_scene(const std::string& name, LoadedMesh loaded) {
       if (!loaded.corner_normals.empty())
         normals[m].insert(normals[m].end(), &loaded.corner_normals[3 * t],
                           &loaded.corner_normals[3 * t] + 3);
+      if (!loaded.corner_uvs.empty())
+        uvs[m].insert(uvs[m].end(), &loaded.corner_uvs[3 * t], &loaded.corner_uvs[3 * t] + 3);
       if (remap[m].empty()) remap[m].assign(loaded.mesh.positions.size(), UINT32_MAX);
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = loaded.mesh.indices[3 * t + k];
@@ -484,6 +487,13 @@ Scene file_scene(const std::string& name, LoadedMesh loaded) {
                                           std::move(parts[m]), glm::mat4(1.0f),
                                           loaded.materials[m].material));
       set_shading_normals(scene.objects.back(), std::move(normals[m]));
+      // Textured where the material has a map and every corner its coordinates.
+      const bool mapped = std::all_of(uvs[m].begin(), uvs[m].end(), [](const glm::vec2& uv) {
+        return std::isfinite(uv.x) && std::isfinite(uv.y);
+      });
+      if (loaded.materials[m].material.base_color_map && !uvs[m].empty() && mapped)
+        scene.objects.back().uvs =
+            std::make_shared<const std::vector<glm::vec2>>(std::move(uvs[m]));
     }
     scene.objects.push_back(std::move(ground));
   } else {

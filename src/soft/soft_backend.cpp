@@ -496,7 +496,7 @@ void SoftBackend::shade() {
     for (const std::int32_t o : layer->object)
       if (o >= 0) seen_[static_cast<std::size_t>(o)] = 1;
   normals_.resize(scene.objects.size());
-  smooth_.resize(scene.objects.size());
+  face_corners_.resize(scene.objects.size());
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     if (!seen_[o]) continue;
     const SceneObject& object = scene.objects[o];
@@ -505,10 +505,12 @@ void SoftBackend::shade() {
     std::vector<glm::vec3>& normals = normals_[o];
     normals.resize(mesh.triangle_count());
     const ShadingNormals* given = smooth_shading(object);
-    SmoothFaces& smooth = smooth_[o];
-    smooth.corners.resize(given ? mesh.indices.size() : 0);
+    const std::vector<glm::vec2>* uvs = texture_coordinates(object);
+    FaceCorners& smooth = face_corners_[o];
+    smooth.corners.resize(given || uvs ? mesh.indices.size() : 0);
+    smooth.normals.resize(given ? mesh.indices.size() : 0);
     smooth.offsets = given ? given->offsets.data() : nullptr;
-    smooth.normals.resize(smooth.corners.size());
+    smooth.uvs = uvs ? uvs->data() : nullptr;
     const glm::mat3 normal_matrix(glm::transpose(glm::inverse(glm::dmat3(model))));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, normals.size(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -520,11 +522,12 @@ void SoftBackend::shade() {
                           const glm::vec3 n = glm::cross(b - a, c - a);
                           const float len = glm::length(n);
                           normals[f] = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
-                          if (!given) continue;
+                          if (smooth.corners.empty()) continue;
                           const glm::vec3 corners[3] = {a, b, c};
                           for (std::size_t k = 0; k < 3; ++k) {
                             smooth.corners[3 * f + k] = corners[k];
-                            smooth.normals[3 * f + k] = normal_matrix * given->normals[3 * f + k];
+                            if (given)
+                              smooth.normals[3 * f + k] = normal_matrix * given->normals[3 * f + k];
                           }
                         }
                       });
@@ -628,25 +631,35 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
   for (int x = 0; x < w; ++x) {
     const std::int32_t o = layer.object[row + x];
     const bool seen = o >= 0;
-    const glm::vec3 albedo =
-        seen ? scene.objects[static_cast<std::size_t>(o)].material.color : glm::vec3(0.0f);
+    const Material* material =
+        seen ? &scene.objects[static_cast<std::size_t>(o)].material : nullptr;
+    glm::vec3 albedo = seen ? material->color : glm::vec3(0.0f);
     out.z[x] = seen ? depth[row + x] : 1.0f;  // the near plane: a finite point where none is
     glm::vec3 normal(0.0f);
     float offset = 0.0f;
     if (seen) {
       // The normal on the side the eye sees: the face's, or the corners' interpolated at the
-      // pixel's point, turned to the side the face shows (two-sided, as the face decides).
+      // pixel's point, turned to the side the face shows (two-sided, as the face decides); the
+      // albedo, times the texture there.
       const std::size_t f = layer.face[row + x];
       const glm::vec3 face = normals_[static_cast<std::size_t>(o)][f];
       const glm::vec4 h_point = points.base + points.step * float(x) + points.along_z * out.z[x];
       const glm::vec3 point = glm::vec3(h_point) / h_point.w;
       const bool back = glm::dot(face, point) > 0.0f;  // the eye, the origin, behind the face
-      const SmoothFaces& smooth = smooth_[static_cast<std::size_t>(o)];
+      const FaceCorners& at = face_corners_[static_cast<std::size_t>(o)];
       normal = face;
-      if (!smooth.corners.empty()) {
-        const shading::SmoothPoint at = shading::interpolate_smooth(
-            &smooth.corners[3 * f], &smooth.normals[3 * f], &smooth.offsets[3 * f], point, face);
-        normal = at.normal, offset = at.offset;
+      glm::vec3 w(0.0f);
+      if (!at.corners.empty() && shading::barycentric(&at.corners[3 * f], point, w)) {
+        if (!at.normals.empty()) {
+          const shading::SmoothPoint smooth =
+              shading::interpolate_smooth(w, &at.normals[3 * f], &at.offsets[3 * f], face);
+          normal = smooth.normal, offset = smooth.offset;
+        }
+        if (at.uvs) {
+          const glm::vec2* uv = &at.uvs[3 * f];
+          albedo *= shading::sample_texture(*material->base_color_map,
+                                            w.x * uv[0] + w.y * uv[1] + w.z * uv[2]);
+        }
       }
       if (back) normal = -normal;
     }

@@ -119,15 +119,16 @@ class SoftBackend final : public FrameBackend {
   // and into the object's share after each volume).
   std::vector<raster::TileWork> total_work_, shadow_work_;
   // Per object the frame shows: its faces' unit normals, eye-relative (shade); for an object
-  // with shading normals (SceneObject::shading), its faces' corners and their normals too,
-  // eye-relative, 3 per face, to interpolate at each pixel.
+  // with shading normals (SceneObject::shading) or a texture (SceneObject::uvs), its faces'
+  // corners too, eye-relative, 3 per face, to interpolate at each pixel, and the normals.
   std::vector<std::uint8_t> seen_;
   std::vector<std::vector<glm::vec3>> normals_;
-  struct SmoothFaces {
-    std::vector<glm::vec3> corners, normals;
-    const float* offsets = nullptr;  // the object's, per corner
+  struct FaceCorners {
+    std::vector<glm::vec3> corners, normals;  // normals: with shading normals only
+    const float* offsets = nullptr;           // the object's, per corner (shading normals)
+    const glm::vec2* uvs = nullptr;           // the object's, per corner (a texture)
   };
-  std::vector<SmoothFaces> smooth_;
+  std::vector<FaceCorners> face_corners_;
   // One row of pixels being shaded, an array per component (shade_row).
   struct ShadeRow {
     std::vector<float> nx, ny, nz, offset, ar, ag, ab, z, r, g, b;

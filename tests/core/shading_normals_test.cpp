@@ -108,7 +108,9 @@ TEST(InterpolateSmooth, BarycentricInTheFaceClampedOutside) {
   const float offsets[3] = {0.0f, 0.2f, 0.4f};
   const glm::vec3 face(0, 0, 1);
   const auto at = [&](glm::vec3 p) {
-    return shading::interpolate_smooth(corners, normals, offsets, p, face);
+    glm::vec3 w(0.0f);
+    EXPECT_TRUE(shading::barycentric(corners, p, w));
+    return shading::interpolate_smooth(w, normals, offsets, face);
   };
   for (int k = 0; k < 3; ++k) {  // at a corner, its own
     EXPECT_NEAR(glm::distance(at(corners[k]).normal, glm::normalize(normals[k])), 0.0f, 1e-6f);
@@ -123,14 +125,15 @@ TEST(InterpolateSmooth, BarycentricInTheFaceClampedOutside) {
                             glm::normalize(0.75f * normals[0] + 0.5f * normals[1])),
               0.0f, 1e-6f);
   EXPECT_NEAR(at({1, -0.5f, 0}).offset, 0.5f * 0.2f / 1.25f, 1e-6f);
-  // Normals that cancel, and a face of no area: the face's own, nothing taken off.
+  // Normals that cancel: the face's own, nothing taken off. A face of no area has no
+  // coordinates.
+  glm::vec3 w(0.0f);
+  ASSERT_TRUE(shading::barycentric(corners, {1, 0, 0}, w));
   const glm::vec3 opposed[3] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 0}};
-  EXPECT_EQ(shading::interpolate_smooth(corners, opposed, offsets, {1, 0, 0}, face).normal, face);
+  EXPECT_EQ(shading::interpolate_smooth(w, opposed, offsets, face).normal, face);
+  EXPECT_EQ(shading::interpolate_smooth(w, opposed, offsets, face).offset, 0.0f);
   const glm::vec3 line[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
-  const shading::SmoothPoint none =
-      shading::interpolate_smooth(line, normals, offsets, {1, 0, 0}, face);
-  EXPECT_EQ(none.normal, face);
-  EXPECT_EQ(none.offset, 0.0f);
+  EXPECT_FALSE(shading::barycentric(line, {1, 0, 0}, w));
   // The Lambert term: the offset taken off, 1 kept at 1; with no offset, the cosine itself.
   EXPECT_FLOAT_EQ(shading::smooth_lambert(1.0f, 0.4f), 1.0f);
   EXPECT_FLOAT_EQ(shading::smooth_lambert(0.4f, 0.4f), 0.0f);

@@ -442,7 +442,8 @@ INSTANTIATE_TEST_SUITE_P(Files, RealMeshes,
                                            std::string(SHADOWVOL_TEST_DATA) + "/open_box.ply",
                                            std::string(SHADOWVOL_TEST_DATA) + "/fin.stl",
                                            std::string(SHADOWVOL_TEST_DATA) + "/materials.gltf",
-                                           std::string(SHADOWVOL_TEST_DATA) + "/materials.obj"),
+                                           std::string(SHADOWVOL_TEST_DATA) + "/materials.obj",
+                                           std::string(SHADOWVOL_TEST_DATA) + "/textured.obj"),
                          [](const auto& info) {
                            std::string n = std::filesystem::path(info.param).filename().string();
                            for (char& ch : n)
@@ -758,6 +759,18 @@ TEST(Parity, SmoothShadingAgrees) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;
   ASSERT_NE(smooth_shading(loaded->scene.objects[0]), nullptr);
   expect_parity("torus_knot.obj", loaded->scene);
+}
+
+// A texture sampled alike in both backends, in the lit pass and in the ambient term.
+TEST(Parity, TexturesAgree) {
+  auto loaded = load_scene(std::string(SHADOWVOL_TEST_DATA) + "/textured.obj");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_NE(texture_coordinates(loaded->scene.objects[0]), nullptr);
+  expect_parity("textured.obj", loaded->scene);
+  // Glass too: a textured transparent surface reflects its texture, its shadow keeps the colour.
+  Scene glass = loaded->scene;
+  glass.objects[0].material.opacity = 0.5f;
+  expect_parity("textured.obj as glass", glass);
 }
 
 // Shading normals change the light, never the shadows: the same surfaces and masks as flat.
