@@ -85,6 +85,28 @@ TEST(MeshTextures, AMaterialsMapAndTheCornersCoordinates) {
   EXPECT_NE(texture_coordinates(scene->scene.objects[0]), nullptr);
 }
 
+// The same cube as a glTF (v down from the image's top, as glTF has it): the same texture at
+// the same places, and the file's camera.
+TEST(MeshTextures, GltfAndObjAgree) {
+  auto gltf = load_mesh(kData / "textured.gltf");
+  auto obj = load_mesh(kData / "textured.obj");
+  ASSERT_TRUE(gltf.ok()) << gltf.error().message;
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  ASSERT_EQ(gltf->materials.size(), 2u);  // Checker, Floor
+  ASSERT_NE(gltf->materials[0].material.base_color_map, nullptr);
+  EXPECT_EQ(gltf->materials[0].material.base_color_map->rgba,
+            obj->materials[0].material.base_color_map->rgba);
+  EXPECT_EQ(gltf->materials[1].material.base_color_map, nullptr);
+  // The cube's 36 corners first in both, in the same order.
+  for (std::size_t c = 0; c < 36; ++c) {
+    EXPECT_EQ(gltf->mesh.positions[gltf->mesh.indices[c]],
+              obj->mesh.positions[obj->mesh.indices[c]]);
+    EXPECT_NEAR(glm::distance(gltf->corner_uvs[c], obj->corner_uvs[c]), 0.0f, 1e-6f) << c;
+  }
+  ASSERT_EQ(gltf->cameras.size(), 1u);
+  EXPECT_EQ(gltf->cameras[0].name, "Overview");
+}
+
 TEST(MeshTextures, AMissingTextureIsLeftOutWithAWarning) {
   auto loaded = load_mesh(kData / "missing_texture.obj");
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;

@@ -443,7 +443,8 @@ INSTANTIATE_TEST_SUITE_P(Files, RealMeshes,
                                            std::string(SHADOWVOL_TEST_DATA) + "/fin.stl",
                                            std::string(SHADOWVOL_TEST_DATA) + "/materials.gltf",
                                            std::string(SHADOWVOL_TEST_DATA) + "/materials.obj",
-                                           std::string(SHADOWVOL_TEST_DATA) + "/textured.obj"),
+                                           std::string(SHADOWVOL_TEST_DATA) + "/textured.obj",
+                                           std::string(SHADOWVOL_TEST_DATA) + "/textured.gltf"),
                          [](const auto& info) {
                            std::string n = std::filesystem::path(info.param).filename().string();
                            for (char& ch : n)
