@@ -95,14 +95,6 @@ struct GlBackend::MeshBuffers {
   std::shared_ptr<const Mesh> mesh;
   std::shared_ptr<const Topology> topology;
   Object positions = make_buffer(), indices = make_buffer(), normals = make_buffer();
-  // The shading normals of the object last drawn with this mesh (SceneObject::shading), per
-  // corner the normal and its terminator offset (w); null source: flat.
-  std::shared_ptr<const ShadingNormals> corner_normals_source;
-  Object corner_normals;
-  // The texture coordinates of the object last drawn with this mesh (SceneObject::uvs), vec2
-  // per corner; null source: none.
-  std::shared_ptr<const std::vector<glm::vec2>> uvs_source;
-  Object uvs;
   Object vao = make_vertex_array();
   GLsizei index_count = 0;
   Object adjacency_positions, adjacency_indices, adjacency_vao;
@@ -448,30 +440,41 @@ GlBackend::MeshBuffers& GlBackend::mesh_buffers(const SceneObject& object) {
     glVertexArrayElementBuffer(m.vao.get(), m.indices.get());
     m.index_count = static_cast<GLsizei>(mesh.indices.size());
   }
-  MeshBuffers& m = *slot;
-  const ShadingNormals* smooth = smooth_shading(object);
-  if (!smooth) {
-    m.corner_normals_source.reset();
-  } else if (m.corner_normals_source != object.shading) {
-    m.corner_normals_source = object.shading;
-    std::vector<glm::vec4> corners(smooth->normals.size());
-    for (std::size_t c = 0; c < corners.size(); ++c)
-      corners[c] = glm::vec4(smooth->normals[c], smooth->offsets[c]);
-    m.corner_normals = make_buffer();
-    glNamedBufferStorage(m.corner_normals.get(),
-                         static_cast<GLsizeiptr>(corners.size() * sizeof(glm::vec4)),
-                         corners.data(), 0);
+  slot->used = true;
+  return *slot;
+}
+
+GlBackend::CornerBuffer& GlBackend::corner_buffer(const std::shared_ptr<const void>& source) {
+  CornerBuffer& entry = corner_buffers_[source.get()];
+  if (!entry.source) entry.source = source;
+  entry.used = true;
+  return entry;
+}
+
+void GlBackend::object_attributes(const SceneObject& object) {
+  GLuint normals = 0, uvs = 0;
+  if (const ShadingNormals* smooth = smooth_shading(object)) {
+    CornerBuffer& entry = corner_buffer(object.shading);
+    if (!entry.buffer) {  // per corner the normal and its terminator offset (w)
+      std::vector<glm::vec4> corners(smooth->normals.size());
+      for (std::size_t c = 0; c < corners.size(); ++c)
+        corners[c] = glm::vec4(smooth->normals[c], smooth->offsets[c]);
+      entry.buffer = make_buffer();
+      glNamedBufferStorage(entry.buffer.get(),
+                           static_cast<GLsizeiptr>(corners.size() * sizeof(glm::vec4)),
+                           corners.data(), 0);
+    }
+    normals = entry.buffer.get();
   }
-  const std::vector<glm::vec2>* uvs = texture_coordinates(object);
-  if (!uvs) {
-    m.uvs_source.reset();
-  } else if (m.uvs_source != object.uvs) {
-    m.uvs_source = object.uvs;
-    m.uvs = make_buffer();
-    glNamedBufferStorage(m.uvs.get(), static_cast<GLsizeiptr>(uvs->size() * sizeof(glm::vec2)),
-                         uvs->data(), 0);
-  }
-  if (uvs) {
+  if (const std::vector<glm::vec2>* coordinates = texture_coordinates(object)) {
+    CornerBuffer& entry = corner_buffer(object.uvs);
+    if (!entry.buffer) {
+      entry.buffer = make_buffer();
+      glNamedBufferStorage(entry.buffer.get(),
+                           static_cast<GLsizeiptr>(coordinates->size() * sizeof(glm::vec2)),
+                           coordinates->data(), 0);
+    }
+    uvs = entry.buffer.get();
     const std::shared_ptr<const Texture>& map = object.material.base_color_map;
     GlTexture& t = textures_[map.get()];
     if (!t.source) {
@@ -488,8 +491,8 @@ GlBackend::MeshBuffers& GlBackend::mesh_buffers(const SceneObject& object) {
     }
     t.used = true;
   }
-  m.used = true;
-  return m;
+  frame_normals_.push_back(normals);
+  frame_uvs_.push_back(uvs);
 }
 
 Expected<void> check_frame(const GlSettings& settings, const RenderOptions& options) {
@@ -613,16 +616,19 @@ void GlBackend::begin_frame(const FrameInputs& inputs) {
   }
   for (auto& [topology, buffers] : meshes_) buffers->used = false;
   for (auto& [texture, gl_texture] : textures_) gl_texture.used = false;
+  for (auto& [source, buffer] : corner_buffers_) buffer.used = false;
   frame_meshes_.clear();
+  frame_normals_.clear();
+  frame_uvs_.clear();
   transparent_.clear();
-  textured_.clear();
   for (std::uint32_t o = 0; o < inputs.scene.objects.size(); ++o) {
     frame_meshes_.push_back(&mesh_buffers(inputs.scene.objects[o]));
-    textured_.push_back(frame_meshes_.back()->uvs_source != nullptr);
+    object_attributes(inputs.scene.objects[o]);
     if (inputs.plan.transparent(o)) transparent_.push_back(o);
   }
   std::erase_if(meshes_, [](const auto& entry) { return !entry.second->used; });
   std::erase_if(textures_, [](const auto& entry) { return !entry.second.used; });
+  std::erase_if(corner_buffers_, [](const auto& entry) { return !entry.second.used; });
   cpu_ = settings_.volumes == VolumePath::cpu;
   gs_ = settings_.volumes == VolumePath::gpu;
   uploads_.resize(std::max(uploads_.size(), inputs.scene.lights.size()));
@@ -695,7 +701,7 @@ void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
       const SceneGeometry::Place at = g.places.at(frame_meshes_[o]);
       g.object_data[o] = {
           plan.view_proj * plan.objects[o].model, glm::uvec4(plan.objects[o].first_id),
-          glm::vec4(textured_[o] ? glm::vec3(0.0f) : scene.objects[o].material.color, 1.0f)};
+          glm::vec4(frame_uvs_[o] != 0 ? glm::vec3(0.0f) : scene.objects[o].material.color, 1.0f)};
       g.draws.push_back(
           {GLuint(frame_meshes_[o]->index_count), 1, at.first_index, at.base_vertex, o});
     }
@@ -716,7 +722,7 @@ void GlBackend::draw_depth(std::span<const std::uint32_t> objects) {
   glUniform1i(glsl::kVisibleOnly, GL_FALSE);
   draw_surfaces(objects, [&](std::size_t o) {
     glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
-    const glm::vec3 albedo = textured_[o] ? glm::vec3(0.0f) : scene.objects[o].material.color;
+    const glm::vec3 albedo = frame_uvs_[o] != 0 ? glm::vec3(0.0f) : scene.objects[o].material.color;
     glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(albedo));
   });
   glDepthMask(GL_FALSE);
@@ -738,8 +744,9 @@ void GlBackend::end_depth() {
   glUniform3fv(glsl::kAmbient, 1, glm::value_ptr(scene.ambient));
   draw_surfaces(drawn_[static_cast<int>(Layer::glass)], [&](std::size_t o) {
     const Material& material = scene.objects[o].material;
-    const glm::vec3 reflected =
-        textured_[o] ? glm::vec3(0.0f) : material.opacity * material.color;  // ambient_textured
+    const glm::vec3 reflected = frame_uvs_[o] != 0
+                                    ? glm::vec3(0.0f)
+                                    : material.opacity * material.color;  // ambient_textured
     glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
     glUniform3fv(glsl::kAlbedo, 1, glm::value_ptr(reflected));
   });
@@ -1373,7 +1380,7 @@ void GlBackend::bind_surface(std::size_t o) {
   glUniform1ui(glsl::kFirstId, plan.objects[o].first_id);
   const MeshBuffers& m = *frame_meshes_[o];
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kFaceNormalsBinding, m.normals.get());
-  const bool smooth = m.corner_normals_source != nullptr, textured = textured_[o] != 0;
+  const bool smooth = frame_normals_[o] != 0, textured = frame_uvs_[o] != 0;
   glUniform1i(glsl::kSmoothNormals, smooth);
   glUniform1i(glsl::kTextured, textured);
   if (smooth || textured) {
@@ -1381,9 +1388,9 @@ void GlBackend::bind_surface(std::size_t o) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kIndicesBinding, m.indices.get());
   }
   if (smooth)
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kCornerNormalsBinding, m.corner_normals.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kCornerNormalsBinding, frame_normals_[o]);
   if (textured) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kUvsBinding, m.uvs.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, glsl::kUvsBinding, frame_uvs_[o]);
     glBindTextureUnit(glsl::kBaseColorUnit,
                       textures_.at(material.base_color_map.get()).texture.get());
   }
@@ -1395,7 +1402,7 @@ void GlBackend::ambient_textured(Layer layer) {
   const Scene& scene = in_->scene;
   surfaces_.clear();
   for (const std::uint32_t o : drawn_[static_cast<int>(layer)])
-    if (textured_[o]) surfaces_.push_back(o);
+    if (frame_uvs_[o] != 0) surfaces_.push_back(o);
   if (surfaces_.empty()) return;
   Targets& t = *targets_;
   glNamedFramebufferDrawBuffers(t.scene.get(), 2, kColourOnly);

@@ -170,7 +170,17 @@ class GlBackend final : public FrameBackend {
     bool used = false;
   };
   std::unordered_map<const Texture*, GlTexture> textures_;
-  std::vector<std::uint8_t> textured_;  // per object of the frame: drawn with its texture
+  // Per-corner attributes (SceneObject::shading, SceneObject::uvs) as storage buffers, by their
+  // source, kept while in use; per object of the frame, its buffers (0: flat; no texture).
+  struct CornerBuffer {
+    std::shared_ptr<const void> source;
+    Object buffer;
+    bool used = false;
+  };
+  std::unordered_map<const void*, CornerBuffer> corner_buffers_;
+  std::vector<GLuint> frame_normals_, frame_uvs_;
+  CornerBuffer& corner_buffer(const std::shared_ptr<const void>& source);
+  void object_attributes(const SceneObject& object);  // appends to frame_normals_, frame_uvs_
   // Per object: the lit program's uniforms and buffers of its surface (not the light's).
   void bind_surface(std::size_t object);
   // The ambient term of the layer's textured surfaces, which the depth pass left out.

@@ -9,6 +9,12 @@
 #include <stb/stb_image.h>
 
 namespace shadowvol {
+namespace {
+std::string why_not() {
+  const char* reason = stbi_failure_reason();
+  return reason ? reason : "no reason given";
+}
+}  // namespace
 
 Expected<Texture> decode_texture(const std::uint8_t* bytes, std::size_t size,
                                  const std::string& source) {
@@ -18,15 +24,14 @@ Expected<Texture> decode_texture(const std::uint8_t* bytes, std::size_t size,
   const int length = static_cast<int>(size);
   int w = 0, h = 0, channels = 0;
   if (!stbi_info_from_memory(bytes, length, &w, &h, &channels))
-    return make_error(source + ": not an image stb_image can read (" + stbi_failure_reason() + ")");
+    return make_error(source + ": not an image stb_image can read (" + why_not() + ")");
   if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide)
     return make_error(source + ": " + std::to_string(w) + "x" + std::to_string(h) +
                       " pixels; a texture may be at most " + std::to_string(kMaxTextureSide) +
                       " a side");
   const std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(bytes, length, &w, &h, &channels, 4), stbi_image_free);
-  if (!pixels)
-    return make_error(source + ": the image cannot be decoded (" + stbi_failure_reason() + ")");
+  if (!pixels) return make_error(source + ": the image cannot be decoded (" + why_not() + ")");
   Texture texture;
   texture.width = w;
   texture.height = h;

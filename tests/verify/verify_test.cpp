@@ -13,6 +13,7 @@
 #include <glm/ext/matrix_transform.hpp>
 
 #include "backend/backend.h"
+#include "core/shading_normals.h"
 #include "core/shapes.h"
 #include "reference_check.h"
 #include "render/light_map.h"
@@ -772,6 +773,16 @@ TEST(Parity, TexturesAgree) {
   Scene glass = loaded->scene;
   glass.objects[0].material.opacity = 0.5f;
   expect_parity("textured.obj as glass", glass);
+  // Two objects of one mesh, one textured and smooth, the other neither: each its own.
+  Scene pair = loaded->scene;
+  SceneObject plain = pair.objects[0];
+  plain.transform = glm::translate(glm::mat4(1.0f), glm::vec3(-1.2f, 0.0f, 0.3f));
+  plain.uvs = nullptr;
+  plain.material.base_color_map = nullptr;
+  pair.objects[0].shading = std::make_shared<const ShadingNormals>(
+      make_shading_normals(*pair.objects[0].mesh, crease_normals(*pair.objects[0].mesh, 100.0f)));
+  pair.objects.push_back(plain);
+  expect_parity("textured.obj beside an untextured copy", pair);
 }
 
 // Shading normals change the light, never the shadows: the same surfaces and masks as flat.
