@@ -52,6 +52,7 @@ struct Declared {
   std::uint64_t least_bytes = 0;
   std::uint64_t header_bytes = 0;
   std::string counts;
+  bool ended = true;  // PLY: the header's end_header line was found
 };
 
 int ply_type_size(std::string_view type) {
@@ -75,6 +76,7 @@ bool ply_header(std::string_view text, Declared& out) {
   };
   std::vector<Element> elements;
   bool ascii = false;
+  out.ended = false;
   std::size_t at = 0;
   // Lenient as readers are: a line it cannot make out adds nothing, but never hides the counts
   // of the lines it can; a header with no end_header where we looked ends there.
@@ -87,7 +89,10 @@ bool ply_header(std::string_view text, Declared& out) {
       continue;
     }
     if (tokens.empty()) continue;
-    if (tokens[0] == "end_header") break;
+    if (tokens[0] == "end_header") {
+      out.ended = true;
+      break;
+    }
     if (tokens[0] == "format" && tokens.size() >= 2) {
       ascii = tokens[1] == "ascii";
     } else if (tokens[0] == "element" && tokens.size() >= 3) {
@@ -176,10 +181,19 @@ Expected<void> check_declared_size(const std::filesystem::path& path, std::uintm
   Declared declared;
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (!ply_header(head, declared) && !off_header(head, extension == ".off", declared)) return {};
+  const bool ply = ply_header(head, declared);
+  if (!ply && !off_header(head, extension == ".off", declared)) return {};
   const std::uint64_t data_bytes =
       file_size > declared.header_bytes ? file_size - declared.header_bytes : 0;
-  if (declared.least_bytes <= data_bytes) return {};
+  if (declared.least_bytes <= data_bytes) {
+    // assimp (5.2) reads a PLY header without end_header forever.
+    if (ply && !declared.ended)
+      return make_error(path.string() + ": the PLY header has no end_header line" +
+                        (head.size() < kHeaderBytes
+                             ? std::string(" (is the file cut short?)")
+                             : " in its first " + std::to_string(kHeaderBytes) + " bytes"));
+    return {};
+  }
   return make_error(path.string() + ": declares more data than the file holds (" + declared.counts +
                     ": at least " + std::to_string(declared.least_bytes) + " bytes, in a file of " +
                     std::to_string(file_size) +

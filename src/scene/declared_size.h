@@ -17,7 +17,8 @@
 namespace shadowvol {
 
 // `file_size`: the file's size in bytes. Reads at most the header; an unreadable or unrecognised
-// header passes (the reader says what is wrong with it).
+// header passes (the reader says what is wrong with it). A PLY header without its end_header line
+// is refused too: assimp's reader would search for it forever.
 Expected<void> check_declared_size(const std::filesystem::path& path, std::uintmax_t file_size);
 
 }  // namespace shadowvol

@@ -238,7 +238,10 @@ INSTANTIATE_TEST_SUITE_P(
                 "more (is the file cut short?); assimp: Validation failed"},
         BadFile{"one_index_face.obj",
                 "line 5: a face of 1 vertex ('f 3'); a face needs three or more"},
-        BadFile{"absurd_count.stl", "cannot be read as a mesh"}),
+        BadFile{"absurd_count.stl", "cannot be read as a mesh"},
+        // (Found by fuzzing: assimp reads such a header forever.)
+        BadFile{"no_end_header.ply",
+                "the PLY header has no end_header line (is the file cut short?)"}),
     [](const auto& info) {
       std::string name = info.param.file[0] ? info.param.file : "directory";
       std::replace_if(
