@@ -52,7 +52,8 @@ struct Declared {
   std::uint64_t least_bytes = 0;
   std::uint64_t header_bytes = 0;
   std::string counts;
-  bool ended = true;  // PLY: the header's end_header line was found
+  bool ended = true;     // PLY: the header's end_header line was found
+  std::string repeated;  // PLY: an element's name that the header defines twice
 };
 
 int ply_type_size(std::string_view type) {
@@ -96,6 +97,8 @@ bool ply_header(std::string_view text, Declared& out) {
     if (tokens[0] == "format" && tokens.size() >= 2) {
       ascii = tokens[1] == "ascii";
     } else if (tokens[0] == "element" && tokens.size() >= 3) {
+      for (const Element& e : elements)
+        if (e.name == tokens[1] && out.repeated.empty()) out.repeated = std::string(tokens[1]);
       elements.push_back(Element{tokens[1], parse_count(tokens[2])});
     } else if (tokens[0] == "property" && !elements.empty() && tokens.size() >= 2) {
       Element& e = elements.back();
@@ -186,6 +189,15 @@ Expected<void> check_declared_size(const std::filesystem::path& path, std::uintm
   const std::uint64_t data_bytes =
       file_size > declared.header_bytes ? file_size - declared.header_bytes : 0;
   if (declared.least_bytes <= data_bytes) {
+    // assimp (5.2) takes a header that defines an element twice into an inconsistent mesh, on
+    // which its triangulation aborts.
+    if (ply && !declared.repeated.empty()) {
+      std::string name = declared.repeated;
+      for (char& c : name)
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+      return make_error(path.string() + ": the PLY header defines the element '" + name +
+                        "' twice");
+    }
     // assimp (5.2) reads a PLY header without end_header forever.
     if (ply && !declared.ended)
       return make_error(path.string() + ": the PLY header has no end_header line" +

@@ -240,6 +240,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "line 5: a face of 1 vertex ('f 3'); a face needs three or more"},
         BadFile{"absurd_count.stl", "cannot be read as a mesh"},
         // (Found by fuzzing: assimp reads such a header forever.)
+        BadFile{"element_twice.ply", "the PLY header defines the element 'face' twice"},
         BadFile{"no_end_header.ply",
                 "the PLY header has no end_header line (is the file cut short?)"}),
     [](const auto& info) {
