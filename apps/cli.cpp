@@ -115,6 +115,14 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
       ->capture_default_str();
 }
 
+void add_frame_number_option(CLI::App* cmd, FrameArgs& args) {
+  cmd->add_option("--frame", args.frame,
+                  "Draw the scene as it stands at this frame of its animation: the motions of "
+                  "built-in scenes and scene files, and a mesh file's own animation (glTF, "
+                  "COLLADA, FBX) at 30 frames a second or its scene file's frames_per_second")
+      ->capture_default_str();
+}
+
 namespace {
 
 // `value` parsed by `parse`, or the error prefixed by the option's name.
@@ -134,6 +142,10 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scen
                       : load_scene(args.scene);
   status.clear();
   if (!loaded) return loaded.error();
+  if (args.frame < 0)
+    return make_error("--frame: " + std::to_string(args.frame) +
+                      " is not a frame (0, the scene as given, or more)");
+  if (args.frame > 0) loaded->scene = scene_at_frame(loaded->scene, args.frame);
   if (!args.camera.empty())
     if (auto ok = use_camera(*loaded, args.camera); !ok) return ok.error();
   if (args.flat) shade_flat(loaded->scene);

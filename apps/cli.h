@@ -58,9 +58,12 @@ struct FrameArgs {
   bool serial_volumes = false;  // RenderOptions::overlap_volumes off
   bool flat = false;            // shade every face flat (shade_flat)
   std::string camera = "";  // a mesh file's own camera by name; empty: its first, or the stage's
+  int frame = 0;            // --frame: the scene as it stands at this frame of its animation
 };
 // `with_backend`: false for the viewer, which is OpenGL by nature.
 void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend = true);
+// `--frame N`, for the commands that draw one frame (render, verify).
+void add_frame_number_option(CLI::App* cmd, FrameArgs& args);
 
 // The arguments parsed and checked: the scene loaded (its warnings printed), every value valid
 // and the frame one the library can draw (check_frame).

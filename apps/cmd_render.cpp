@@ -230,6 +230,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene with exact shadows to a PNG");
   add_frame_options(cmd, args->frame);
+  add_frame_number_option(cmd, args->frame);
   cmd->add_option("--out", args->out, "PNG file to write")->capture_default_str();
   cmd->add_flag("--stats", args->stats, "Print the frame's timings and counters");
   cmd->add_flag("--json", args->json,

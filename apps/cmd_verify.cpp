@@ -19,17 +19,14 @@ struct VerifyArgs {
   FrameArgs frame{"demo", "auto", "auto", "480x270"};
   std::string diff;
   bool json = false;
-  int frame_number = 0;
 };
 
 int run(const VerifyArgs& args) {
   auto resolved = resolve(args.frame);
   if (!resolved) return fail(resolved.error().message);
   RenderOptions options = resolved->options;
-  options.count_fill = args.json;  // the JSON carries the volumes' fill
-  if (args.frame_number < 0)
-    return fail("--frame: " + std::to_string(args.frame_number) + " is not a frame number");
-  const Scene scene = scene_at_frame(resolved->scene, args.frame_number);
+  options.count_fill = args.json;        // the JSON carries the volumes' fill
+  const Scene& scene = resolved->scene;  // at --frame
   auto renderer = make_frame_renderer(*resolved, options);
   if (!renderer) return fail(renderer.error().message);
   const std::string backend((*renderer)->backend().name());
@@ -56,7 +53,7 @@ int run(const VerifyArgs& args) {
     nlohmann::json out = to_json(options);
     out.update({{"scene", scene.name},
                 {"backend", backend},
-                {"frame", args.frame_number},
+                {"frame", args.frame.frame},
                 {"pixels_compared", c.pixels_compared},
                 {"mismatched", c.mismatched},
                 {"mismatched_outside_band", c.mismatched_outside_band},
@@ -90,10 +87,9 @@ void add_verify_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "verify", "Render a scene and compare its shadows per pixel with the ray-traced reference");
   add_frame_options(cmd, args->frame);
+  add_frame_number_option(cmd, args->frame);
   cmd->add_option("--diff", args->diff, "Write the mismatches over the scene to this PNG");
   cmd->add_flag("--json", args->json, "Print one JSON object");
-  cmd->add_option("--frame", args->frame_number, "Verify this frame of the scene's animation")
-      ->capture_default_str();
   cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

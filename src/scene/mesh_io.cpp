@@ -91,15 +91,32 @@ struct Gather {
 
   // Cameras and lights are placed by their nodes' names: the world and local transforms.
   std::map<std::string, std::pair<aiMatrix4x4, aiMatrix4x4>> node_transforms;
+  NodeHierarchy hierarchy;  // every node, parents first, for the animations
 
-  void node(const aiNode* n, const aiMatrix4x4& parent) {
+  void node(const aiNode* n, const aiMatrix4x4& parent, int parent_index) {
     const aiMatrix4x4 world = parent * n->mTransformation;
     node_transforms.emplace(n->mName.C_Str(), std::pair{world, n->mTransformation});
-    for (unsigned i = 0; i < n->mNumMeshes; ++i) mesh(scene->mMeshes[n->mMeshes[i]], world);
-    for (unsigned i = 0; i < n->mNumChildren; ++i) node(n->mChildren[i], world);
+    const int index = static_cast<int>(hierarchy.nodes.size());
+    hierarchy.nodes.push_back(rest_node(*n, parent_index));
+    for (unsigned i = 0; i < n->mNumMeshes; ++i) mesh(scene->mMeshes[n->mMeshes[i]], world, index);
+    for (unsigned i = 0; i < n->mNumChildren; ++i) node(n->mChildren[i], world, index);
   }
 
-  void mesh(const aiMesh* m, const aiMatrix4x4& world) {
+  static HierarchyNode rest_node(const aiNode& n, int parent) {
+    HierarchyNode out{n.mName.C_Str(), parent, {}, {}, {}, {}};
+    const aiMatrix4x4& m = n.mTransformation;  // row-major; glm is column-major
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) out.rest[c][r] = static_cast<double>(m[r][c]);
+    aiVector3D scale, position;
+    aiQuaternion rotation;
+    m.Decompose(scale, rotation, position);
+    out.rest_translation = {position.x, position.y, position.z};
+    out.rest_rotation = glm::dquat(rotation.w, rotation.x, rotation.y, rotation.z);
+    out.rest_scale = {scale.x, scale.y, scale.z};
+    return out;
+  }
+
+  void mesh(const aiMesh* m, const aiMatrix4x4& world, int node_index) {
     Mesh& dst = out->mesh;
     const std::size_t base = dst.positions.size();
     // Normals turn by the inverse transpose; a corner without a usable one is left NaN, for
@@ -143,6 +160,7 @@ struct Gather {
                                       : glm::vec2(kNone));
       }
       out->triangle_material.push_back(m->mMaterialIndex);
+      out->triangle_node.push_back(static_cast<std::uint32_t>(node_index));
     }
   }
 
@@ -300,6 +318,65 @@ void gather_cameras_and_lights(const aiScene& scene, const Gather& gather, bool 
   }
 }
 
+// The file's animations as clips of the hierarchy's nodes; an error names the animation and the
+// node where a key is not a number.
+Expected<void> gather_animations(const aiScene& scene, NodeHierarchy& hierarchy,
+                                 const std::string& file, std::vector<std::string>& warnings) {
+  std::map<std::string, int> node_index;
+  for (std::size_t i = 0; i < hierarchy.nodes.size(); ++i)
+    node_index.emplace(hierarchy.nodes[i].name, static_cast<int>(i));  // the first of a name
+  for (unsigned a = 0; a < scene.mNumAnimations; ++a) {
+    const aiAnimation& anim = *scene.mAnimations[a];
+    Clip clip;
+    clip.name = anim.mName.length > 0 ? anim.mName.C_Str() : "animation " + std::to_string(a);
+    // Ticks to seconds; a file that gives no rate has assimp's customary 25 a second.
+    const double per_second = anim.mTicksPerSecond > 0.0 ? anim.mTicksPerSecond : 25.0;
+    for (unsigned c = 0; c < anim.mNumChannels; ++c) {
+      const aiNodeAnim& channel = *anim.mChannels[c];
+      const auto found = node_index.find(channel.mNodeName.C_Str());
+      if (found == node_index.end()) {
+        warnings.push_back(file + ": animation '" + clip.name + "' moves node '" +
+                           channel.mNodeName.C_Str() + "', which the file does not have; left out");
+        continue;
+      }
+      NodeChannels out;
+      out.node = found->second;
+      std::string bad;
+      const auto keys = [&](auto& into, const auto* from, unsigned count, auto value) {
+        std::vector<std::pair<double, decltype(value(from[0].mValue))>> sorted;
+        for (unsigned k = 0; k < count; ++k)
+          sorted.emplace_back(from[k].mTime / per_second, value(from[k].mValue));
+        std::stable_sort(sorted.begin(), sorted.end(),
+                         [](const auto& x, const auto& y) { return x.first < y.first; });
+        for (const auto& [time, v] : sorted) {
+          bool finite = std::isfinite(time);
+          for (int i = 0; i < v.length(); ++i) finite = finite && std::isfinite(v[i]);
+          if (!finite && bad.empty()) bad = "a key that is not a finite number";
+          into.seconds.push_back(time);
+          into.values.push_back(v);
+          clip.duration = std::max(clip.duration, time);
+        }
+      };
+      const auto vec3 = [](const aiVector3D& v) { return glm::dvec3(v.x, v.y, v.z); };
+      keys(out.translation, channel.mPositionKeys, channel.mNumPositionKeys, vec3);
+      keys(out.scale, channel.mScalingKeys, channel.mNumScalingKeys, vec3);
+      keys(out.rotation, channel.mRotationKeys, channel.mNumRotationKeys,
+           [&](const aiQuaternion& q) {
+             const glm::dquat r(q.w, q.x, q.y, q.z);
+             const double length = glm::length(r);
+             if (length == 0.0 && bad.empty()) bad = "a rotation key of no length";
+             return length > 0.0 ? r / length : r;
+           });
+      if (!bad.empty())
+        return make_error(file + ": animation '" + clip.name + "' moves node '" +
+                          channel.mNodeName.C_Str() + "' by " + bad);
+      clip.channels.push_back(std::move(out));
+    }
+    hierarchy.clips.push_back(std::move(clip));
+  }
+  return {};
+}
+
 }  // namespace
 
 Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProgress& progress) {
@@ -315,11 +392,11 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
   if (auto fits = check_declared_size(path, size); !ec && !fits) return fits.error();
 
   Assimp::Importer importer;
-  // Positions, normals, texture coordinates, faces, materials, textures, cameras and lights: ask
-  // assimp for nothing else.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                              aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
-                                  aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS);
+  // Positions, normals, texture coordinates, faces, materials, textures, cameras, lights and
+  // animations: ask assimp for nothing else.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_TANGENTS_AND_BITANGENTS |
+                                                          aiComponent_COLORS |
+                                                          aiComponent_BONEWEIGHTS);
   if (progress) importer.SetProgressHandler(new ProgressForwarder(progress));
   const aiScene* scene = nullptr;
   try {
@@ -342,9 +419,15 @@ Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProg
     return make_error(name + ": the file has no scene hierarchy (no meshes placed in it)");
 
   LoadedMesh loaded;
-  Gather gather{scene, &loaded, {}, {}};
-  gather.node(scene->mRootNode, aiMatrix4x4());
+  Gather gather{scene, &loaded, {}, {}, {}};
+  gather.node(scene->mRootNode, aiMatrix4x4(), -1);
   if (!gather.error.empty()) return make_error(name + ": " + gather.error);
+  if (auto ok = gather_animations(*scene, gather.hierarchy, name, loaded.warnings); !ok)
+    return ok.error();
+  if (gather.hierarchy.clips.empty())
+    loaded.triangle_node.clear();
+  else
+    loaded.hierarchy = std::make_shared<const NodeHierarchy>(std::move(gather.hierarchy));
   gather_materials(*scene, path, loaded);
   // A map on triangles without texture coordinates has nothing to be sampled at.
   for (std::size_t t = 0; t < loaded.triangle_material.size() && !loaded.corner_uvs.empty(); ++t) {

@@ -12,6 +12,7 @@
 
 #include "core/expected.h"
 #include "core/mesh.h"
+#include "scene/node_animation.h"
 #include "scene/scene.h"
 
 #include <glm/vec2.hpp>
@@ -44,6 +45,11 @@ struct LoadedMesh {
   // Per corner, the texture coordinates of the file's first set (v up), NaN where its mesh has
   // none; empty where no material has a texture.
   std::vector<glm::vec2> corner_uvs;
+  // Where the file has animations: its node hierarchy with them as clips (in the file's order),
+  // and per triangle of `mesh` the node whose instance of a mesh it belongs to. Null and empty
+  // where the file has none.
+  std::shared_ptr<const NodeHierarchy> hierarchy;
+  std::vector<std::uint32_t> triangle_node;
   std::vector<FileCamera> cameras;    // perspective cameras, in the file's order
   std::vector<FileLight> lights;      // point, spot (as points) and directional lights
   std::size_t points_ignored = 0;     // point primitives in the file (not casters)
@@ -65,6 +71,10 @@ struct LoadedMesh {
 // vertical field of view from assimp's horizontal one and the aspect. Lights (glTF
 // KHR_lights_punctual, COLLADA, FBX): their colour, normalised to a largest channel of 1, at
 // intensity 1 (files give intensities in units of their own); spot lights cast as point lights.
+// Animations: each a clip of its channels' keys in seconds (sorted; a key of a non-finite value
+// or time is an error), for nodes named in the hierarchy (channels for others are left out with
+// a warning); the mesh stays at rest, and cameras and lights where the rest pose puts them.
+// Skinning (bone weights) is not applied: skinned meshes stay in their bind pose.
 // Errors (each names the file): missing or unreadable file, a file assimp cannot parse, a file with
 // no triangles, and anything validate_mesh refuses (NaN/Inf coordinates, out-of-range indices,
 // sizes past the limits).

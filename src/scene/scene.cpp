@@ -37,11 +37,19 @@ glm::mat4 Camera::projection(float aspect) const {
 Scene scene_at_frame(const Scene& scene, int frame) {
   Scene s = scene;
   const float f = static_cast<float>(frame);
+  const auto animated = [](const Animation& a, const glm::mat4& transform, float frames) {
+    if (a.still()) return transform;
+    return glm::translate(glm::mat4(1.0f), a.move * frames) * transform *
+           glm::rotate(glm::mat4(1.0f), glm::radians(a.degrees_per_frame * frames), a.spin_axis);
+  };
   for (SceneObject& o : s.objects) {
-    if (o.animation.still()) continue;
-    o.transform = glm::translate(glm::mat4(1.0f), o.animation.move * f) * o.transform *
-                  glm::rotate(glm::mat4(1.0f), glm::radians(o.animation.degrees_per_frame * f),
-                              o.animation.spin_axis);
+    if (o.node.bound()) {  // from the clip's start, so that frames add up exactly
+      o.node.frame += frame;
+      o.transform = animated(o.animation, o.node.transform_at(o.node.frame),
+                             static_cast<float>(o.node.frame));
+    } else {
+      o.transform = animated(o.animation, o.transform, f);
+    }
   }
   const auto turn_about_y = [f](float degrees_per_frame) {
     return glm::rotate(glm::mat4(1.0f), glm::radians(degrees_per_frame * f), glm::vec3(0, 1, 0));
@@ -495,21 +503,26 @@ constexpr Builtin kBuiltins[] = {
 
 }  // namespace
 
-Scene default_stage(std::string name, Mesh mesh) {
+Scene stage_around(std::string name, const Mesh& mesh) {
   glm::vec3 lo(INFINITY), hi(-INFINITY);
   for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   const glm::vec3 centre = (lo + hi) * 0.5f;
   const float size = std::max(glm::length(hi - lo), 1e-6f);
   Scene s;
-  s.name = name;
-  s.objects.push_back(
-      make_object(std::move(name), std::move(mesh), glm::mat4(1.0f), {0.8f, 0.55f, 0.35f}));
+  s.name = std::move(name);
   const glm::vec3 floor(centre.x, lo.y - 0.001f * size, centre.z);
   s.objects.push_back(make_object("ground", make_ground(2.0f * size),
                                   glm::translate(glm::mat4(1.0f), floor), {0.75f, 0.75f, 0.72f}));
   s.lights.push_back(
       {glm::vec4(centre + glm::vec3(0.6f, 1.4f, 0.8f) * size, 1.0f), {1, 0.97f, 0.9f}, 1.0f});
   s.camera = {centre + glm::vec3(0.0f, 0.7f, 1.6f) * size, centre, {0, 1, 0}, 45.0f, 0.01f * size};
+  return s;
+}
+
+Scene default_stage(std::string name, Mesh mesh) {
+  Scene s = stage_around(name, mesh);
+  s.objects.insert(s.objects.begin(),
+                   make_object(std::move(name), std::move(mesh), glm::mat4(1.0f), kStageColor));
   return s;
 }
 

@@ -22,6 +22,7 @@
 #include "core/mesh.h"
 #include "core/shading_normals.h"
 #include "core/topology.h"
+#include "scene/node_animation.h"
 
 namespace shadowvol {
 
@@ -84,6 +85,10 @@ struct SceneObject {
   glm::mat4 transform{1.0f};                 // object space -> world space, at frame 0
   Material material;
   Animation animation;
+  // Placed by a node of a moving hierarchy (a file's animation): at frame f its transform is
+  // node.transform_at(f), which `animation` then moves as it moves any object. Unbound: the
+  // object stays where `transform` puts it but for `animation`.
+  NodeBinding node = {};
   SplitPlaneChoice split_plane = SplitPlaneChoice::automatic;
   // Who casts and who receives (Intel, "mainstream shadow volumes": only the geometry named as an
   // occluder occludes). An object that does not cast has no volume; one that does not receive is
@@ -168,7 +173,8 @@ glm::mat4 eye_relative(const glm::mat4& transform, const glm::vec3& eye);
 // A homogeneous world point or direction in eye-relative space, subtracted in double.
 glm::vec4 eye_relative(const glm::vec4& point, const glm::vec3& eye);
 
-// The scene as it stands at frame `frame` of its animation (frame 0 is the scene itself).
+// The scene as it stands at frame `frame` of its animation (frame 0 is the scene itself): objects
+// bound to a file's nodes where the clip puts them, then every Animation, orbit and move.
 // Cheap: meshes and topologies are shared, not copied.
 Scene scene_at_frame(const Scene& scene, int frame);
 
@@ -203,8 +209,11 @@ bool has_transparent_casters(const Scene& scene);
 Expected<Scene> builtin_scene(std::string_view name);
 std::vector<std::string_view> builtin_scene_names();
 
-// A stage for a bare mesh: the mesh (named `name`), a ground plane just under its bounds, a
-// point light above one side, and a camera framing it.
+// A stage for a bare mesh: the mesh (named `name`, in kStageColor), a ground plane just under
+// its bounds, a point light above one side, and a camera framing it.
 Scene default_stage(std::string name, Mesh mesh);
+inline constexpr glm::vec3 kStageColor{0.8f, 0.55f, 0.35f};
+// default_stage without the mesh's object: the ground, the light and the camera.
+Scene stage_around(std::string name, const Mesh& mesh);
 
 }  // namespace shadowvol

@@ -1,11 +1,16 @@
 #include "scene/scene_io.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <utility>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 #include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
@@ -201,7 +206,8 @@ struct Reader {
 
 namespace {
 
-Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, Reader& r) {
+Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, Reader& r,
+                           std::vector<std::string>& warnings) {
   const std::string& name = r.file;
   Scene scene;
   scene.name = path.stem().string();
@@ -300,15 +306,20 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
   for (std::size_t i = 0; i < root["objects"].size(); ++i) {
     const json& o = root["objects"][i];
     const std::string p = "scene.objects[" + std::to_string(i) + "]";
-    if (!r.keys(o, p,
-                {"name", "mesh", "shape", "transform", "color", "opacity", "animation",
-                 "split_plane", "decompose", "casts_shadows", "receives_shadows"}))
+    if (!r.keys(
+            o, p,
+            {"name", "mesh", "shape", "transform", "color", "opacity", "animation", "split_plane",
+             "decompose", "casts_shadows", "receives_shadows", "clip", "frames_per_second"}))
       return make_error(r.error);
     if (o.contains("mesh") == o.contains("shape"))
       return make_error(name + ": " + p +
                         ": give either mesh (a file) or shape (a built-in shape)");
+    for (const char* key : {"clip", "frames_per_second"})
+      if (o.contains(key) && !o.contains("mesh"))
+        return make_error(name + ": " + p + "." + key +
+                          ": only a mesh file has animations of its own");
     Mesh mesh;
-    std::vector<glm::vec3> corner_normals;  // a mesh file's (mesh_io.h)
+    Expected<LoadedMesh> loaded = make_error("");  // a mesh file's whole (mesh_io.h)
     std::string object_name = "object" + std::to_string(i);
     if (o.contains("name")) {
       if (!o["name"].is_string()) return make_error(name + ": " + p + ".name: expected a string");
@@ -319,10 +330,9 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
         return make_error(name + ": " + p + ".mesh: expected a file name");
       std::filesystem::path file = o["mesh"].get<std::string>();
       if (file.is_relative()) file = path.parent_path() / file;
-      auto loaded = load_mesh(file);
+      loaded = load_mesh(file);
       if (!loaded) return make_error(name + ": " + p + ".mesh: " + loaded.error().message);
-      mesh = std::move(loaded->mesh);
-      corner_normals = std::move(loaded->corner_normals);
+      warnings.insert(warnings.end(), loaded->warnings.begin(), loaded->warnings.end());
     } else if (!r.shape(o["shape"], p + ".shape", mesh)) {
       return make_error(r.error);
     }
@@ -380,24 +390,66 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
           return make_error(name + ": " + p + "." + key + ": expected true or false");
         *flag = o[key].get<bool>();
       }
-    // Decomposed (Laine 2005 §6): each connected part an object of its own, with its own split
-    // plane; vertices at equal positions join, since mesh files often repeat them per face. The
-    // parts shade flat.
-    std::vector<Mesh> parts;
-    if (decompose)
-      parts = connected_parts(mesh, true);
-    else
-      parts.push_back(std::move(mesh));
-    const bool smooth = parts.size() == 1 && !corner_normals.empty();
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-      const std::string part_name =
-          parts.size() > 1 ? object_name + "/" + std::to_string(k + 1) : object_name;
-      scene.objects.push_back(make_object(part_name, std::move(parts[k]), transform, material));
-      scene.objects.back().animation = animation;
-      scene.objects.back().split_plane = split_plane;
-      scene.objects.back().casts_shadows = casts;
-      scene.objects.back().receives_shadows = receives;
-      if (smooth) set_shading_normals(scene.objects.back(), std::move(corner_normals));
+    // A mesh file's objects as file_objects makes them (its materials unless the object gives
+    // its own colour or opacity; its first animation, or `clip`, moving its nodes); a shape's one.
+    std::vector<SceneObject> objects;
+    if (loaded) {
+      FileObjectOptions options;
+      options.fallback = material;
+      if (o.contains("color") || o.contains("opacity")) options.material = material;
+      options.placement = glm::dmat4(transform);
+      if (o.contains("clip")) {
+        const json& c = o["clip"];
+        if (c.is_null()) {
+          options.clip = -1;
+        } else if (!c.is_string()) {
+          return make_error(name + ": " + p +
+                            ".clip: expected an animation's name, or null to hold the file still");
+        } else if (auto clip = find_clip(*loaded, c.get<std::string>()); !clip) {
+          return make_error(name + ": " + p + ".clip: " + clip.error().message);
+        } else {
+          options.clip = *clip;
+        }
+      }
+      float fps = static_cast<float>(kDefaultFramesPerSecond);
+      if (!r.optional(o, p, "frames_per_second", [&](const json& v, const std::string& q) {
+            return r.number(v, q, fps) &&
+                   (fps > 0.0f ? true
+                               : r.fail(q,
+                                        "must be positive (frames a second of the "
+                                        "file's animation)"));
+          }))
+        return make_error(r.error);
+      options.frames_per_second = fps;
+      objects = file_objects(object_name, *loaded, options, warnings);
+    } else {
+      objects.push_back(make_object(object_name, std::move(mesh), transform, material));
+    }
+    for (SceneObject& object : objects) {
+      // Decomposed (Laine 2005 §6): each connected part an object of its own, with its own split
+      // plane; vertices at equal positions join, since mesh files often repeat them per face.
+      // The parts shade flat and untextured.
+      std::vector<SceneObject> parts;
+      std::vector<Mesh> meshes;
+      if (decompose) meshes = connected_parts(*object.mesh, true);
+      if (meshes.size() > 1) {
+        for (std::size_t k = 0; k < meshes.size(); ++k) {
+          Material flat = object.material;
+          flat.base_color_map = nullptr;
+          parts.push_back(make_object(object.name + "/" + std::to_string(k + 1),
+                                      std::move(meshes[k]), object.transform, flat));
+          parts.back().node = object.node;
+        }
+      } else {
+        parts.push_back(std::move(object));
+      }
+      for (SceneObject& part : parts) {
+        part.animation = animation;
+        part.split_plane = split_plane;
+        part.casts_shadows = casts;
+        part.receives_shadows = receives;
+        scene.objects.push_back(std::move(part));
+      }
     }
   }
   return scene;
@@ -405,7 +457,8 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
 
 }  // namespace
 
-Expected<Scene> load_scene_file(const std::filesystem::path& path) {
+Expected<Scene> load_scene_file(const std::filesystem::path& path,
+                                std::vector<std::string>* warnings) {
   const std::string name = path.string();
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(name + ": cannot be opened for reading");
@@ -420,8 +473,9 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path) {
     return make_error(name + ": " + describe_json_error(e, position.path()));
   }
   Reader r{name, {}};
+  std::vector<std::string> ignored;
   try {
-    return read_scene(path, root, r);
+    return read_scene(path, root, r, warnings ? *warnings : ignored);
   } catch (const json::exception& e) {  // a check missed: still a message, never terminate
     return make_error(name + ": " + describe_json_error(e, r.at));
   }
@@ -438,67 +492,122 @@ Expected<LoadedScene> load_scene(const std::string& name) {
   std::error_code ec;
   if (!std::filesystem::exists(name, ec)) return builtin.error();  // lists the built-in names
   if (std::filesystem::path(name).extension() == ".json") {
-    auto scene = load_scene_file(name);
+    std::vector<std::string> warnings;
+    auto scene = load_scene_file(name, &warnings);
     if (!scene) return scene.error();
-    return LoadedScene{std::move(*scene), {}, {}};
+    return LoadedScene{std::move(*scene), std::move(warnings), {}};
   }
   auto loaded = load_mesh(name);
   if (!loaded) return loaded.error();
   std::vector<std::string> warnings = std::move(loaded->warnings);
-  std::vector<FileCamera> cameras = loaded->cameras;
-  return LoadedScene{
-      file_scene(std::filesystem::path(name).filename().string(), std::move(*loaded)),
-      std::move(warnings), std::move(cameras)};
+  Scene scene = file_scene(std::filesystem::path(name).filename().string(), *loaded, warnings);
+  return LoadedScene{std::move(scene), std::move(warnings), std::move(loaded->cameras)};
 }
 
-Scene file_scene(const std::string& name, LoadedMesh loaded) {
-  // The stage around the whole mesh: its ground, camera and light.
-  const bool split = !loaded.materials.empty();
-  Scene scene = default_stage(name, split ? loaded.mesh : std::move(loaded.mesh));
-  if (split) {
-    // An object per material, each with the vertices its triangles use.
-    std::vector<Mesh> parts(loaded.materials.size());
-    std::vector<std::vector<glm::vec3>> normals(parts.size());
-    std::vector<std::vector<glm::vec2>> uvs(parts.size());
-    std::vector<std::vector<std::uint32_t>> remap(parts.size());
-    for (std::size_t t = 0; t < loaded.triangle_material.size(); ++t) {
-      const std::uint32_t m = loaded.triangle_material[t];
-      Mesh& part = parts[m];
-      if (!loaded.corner_normals.empty())
-        normals[m].insert(normals[m].end(), &loaded.corner_normals[3 * t],
-                          &loaded.corner_normals[3 * t] + 3);
-      if (!loaded.corner_uvs.empty())
-        uvs[m].insert(uvs[m].end(), &loaded.corner_uvs[3 * t], &loaded.corner_uvs[3 * t] + 3);
-      if (remap[m].empty()) remap[m].assign(loaded.mesh.positions.size(), UINT32_MAX);
+Expected<int> find_clip(const LoadedMesh& loaded, const std::string& name) {
+  const std::vector<Clip> none;
+  const std::vector<Clip>& clips = loaded.hierarchy ? loaded.hierarchy->clips : none;
+  for (std::size_t i = 0; i < clips.size(); ++i)
+    if (clips[i].name == name) return static_cast<int>(i);
+  std::string names;
+  for (const Clip& c : clips) names += (names.empty() ? "'" : ", '") + c.name + "'";
+  return make_error("no animation named '" + name + "'; " +
+                    (names.empty() ? std::string("the file has none") : "the file's are " + names));
+}
+
+std::vector<SceneObject> file_objects(const std::string& prefix, const LoadedMesh& loaded,
+                                      const FileObjectOptions& options,
+                                      std::vector<std::string>& warnings) {
+  const std::size_t triangles = loaded.mesh.indices.size() / 3;
+  const NodeHierarchy* hierarchy = loaded.hierarchy.get();
+  const int clip =
+      hierarchy && options.clip >= 0 && options.clip < static_cast<int>(hierarchy->clips.size())
+          ? options.clip
+          : -1;
+  // Per node, whether the clip moves it, and how its mesh goes from rest to the node's space.
+  std::vector<char> moving(hierarchy ? hierarchy->nodes.size() : 0, 0);
+  std::vector<glm::dmat4> from_rest(moving.size(), glm::dmat4(1.0));
+  for (std::size_t n = 0; n < moving.size() && clip >= 0; ++n) {
+    if (!hierarchy->moves(static_cast<int>(n), clip)) continue;
+    const glm::dmat4 rest = hierarchy->world_at(static_cast<int>(n), -1, 0.0);
+    const double det = glm::determinant(rest);
+    if (!std::isfinite(det) || std::abs(det) < 1e-300) {
+      warnings.push_back(prefix + ": node '" + hierarchy->nodes[n].name +
+                         "' is flat at rest (a scale of 0), so its motion cannot be recovered from "
+                         "its mesh; drawn still");
+      continue;
+    }
+    moving[n] = 1;
+    from_rest[n] = glm::inverse(rest);
+  }
+  // The objects: a group of triangles per (moving node or -1 for all that stay, material).
+  const bool by_node = clip >= 0 && loaded.triangle_node.size() == triangles;
+  const bool by_material = !loaded.materials.empty() && !options.material;
+  std::map<std::pair<int, std::uint32_t>, std::vector<std::uint32_t>> groups;
+  for (std::uint32_t t = 0; t < triangles; ++t) {
+    const std::uint32_t node = by_node ? loaded.triangle_node[t] : 0;
+    const int key = by_node && moving[node] ? static_cast<int>(node) : -1;
+    groups[{key, by_material ? loaded.triangle_material[t] : 0u}].push_back(t);
+  }
+  std::vector<SceneObject> objects;
+  std::vector<std::uint32_t> remap(loaded.mesh.positions.size(), UINT32_MAX);
+  for (const auto& [key, group] : groups) {
+    const auto [node, material] = key;
+    Mesh part;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    for (const std::uint32_t t : group) {
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = loaded.mesh.indices[3 * t + k];
-        if (remap[m][v] == UINT32_MAX) {
-          remap[m][v] = static_cast<std::uint32_t>(part.positions.size());
+        if (remap[v] == UINT32_MAX) {
+          remap[v] = static_cast<std::uint32_t>(part.positions.size());
           part.positions.push_back(loaded.mesh.positions[v]);
         }
-        part.indices.push_back(remap[m][v]);
+        part.indices.push_back(remap[v]);
+        if (loaded.corner_normals.size() == 3 * triangles)
+          normals.push_back(loaded.corner_normals[3 * t + k]);
+        if (loaded.corner_uvs.size() == 3 * triangles) uvs.push_back(loaded.corner_uvs[3 * t + k]);
       }
     }
-    SceneObject ground = std::move(scene.objects.back());
-    scene.objects.clear();
-    for (std::size_t m = 0; m < parts.size(); ++m) {
-      if (parts[m].indices.empty()) continue;
-      scene.objects.push_back(make_object(name + "/" + loaded.materials[m].name,
-                                          std::move(parts[m]), glm::mat4(1.0f),
-                                          loaded.materials[m].material));
-      set_shading_normals(scene.objects.back(), std::move(normals[m]));
-      // Textured where the material has a map and every corner its coordinates.
-      const bool mapped = std::all_of(uvs[m].begin(), uvs[m].end(), [](const glm::vec2& uv) {
-        return std::isfinite(uv.x) && std::isfinite(uv.y);
-      });
-      if (loaded.materials[m].material.base_color_map && !uvs[m].empty() && mapped)
-        scene.objects.back().uvs =
-            std::make_shared<const std::vector<glm::vec2>>(std::move(uvs[m]));
+    for (const std::uint32_t t : group)
+      for (int k = 0; k < 3; ++k) remap[loaded.mesh.indices[3 * t + k]] = UINT32_MAX;
+    std::string name = prefix;
+    if (node >= 0) name += "/" + hierarchy->nodes[static_cast<std::size_t>(node)].name;
+    if (by_material) name += "/" + loaded.materials[material].name;
+    const Material file_material =
+        by_material ? loaded.materials[material].material : options.fallback;
+    objects.push_back(make_object(std::move(name), std::move(part), glm::mat4(options.placement),
+                                  options.material.value_or(file_material)));
+    SceneObject& object = objects.back();
+    set_shading_normals(object, std::move(normals));
+    // Textured where the file's material has a map and every corner its coordinates.
+    const bool mapped = std::all_of(uvs.begin(), uvs.end(), [](const glm::vec2& uv) {
+      return std::isfinite(uv.x) && std::isfinite(uv.y);
+    });
+    if (object.material.base_color_map && !uvs.empty() && mapped)
+      object.uvs = std::make_shared<const std::vector<glm::vec2>>(std::move(uvs));
+    if (node >= 0) {
+      object.node = NodeBinding{loaded.hierarchy,
+                                node,
+                                clip,
+                                options.frames_per_second,
+                                options.placement,
+                                from_rest[static_cast<std::size_t>(node)]};
+      object.transform = object.node.transform_at(0);
     }
-    scene.objects.push_back(std::move(ground));
-  } else {
-    set_shading_normals(scene.objects.front(), std::move(loaded.corner_normals));
   }
+  return objects;
+}
+
+Scene file_scene(const std::string& name, const LoadedMesh& loaded,
+                 std::vector<std::string>& warnings) {
+  // The stage around the whole mesh at rest: its ground, camera and light.
+  Scene scene = stage_around(name, loaded.mesh);
+  FileObjectOptions options;
+  options.fallback = Material{kStageColor};
+  std::vector<SceneObject> objects = file_objects(name, loaded, options, warnings);
+  objects.push_back(std::move(scene.objects.back()));  // the ground
+  scene.objects = std::move(objects);
   if (!loaded.cameras.empty()) scene.camera = loaded.cameras.front().camera;
   if (!loaded.lights.empty()) {
     scene.lights.clear();

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,9 @@
 
 namespace shadowvol {
 
-Expected<Scene> load_scene_file(const std::filesystem::path& path);
+// `warnings`, if given, receives what reading the scene's mesh files passed over (mesh_io.h).
+Expected<Scene> load_scene_file(const std::filesystem::path& path,
+                                std::vector<std::string>* warnings = nullptr);
 
 // What went wrong in a JSON file, for a person: the key path where it did, then nlohmann's
 // detail without its "[json.exception...]" prefix. A number beyond a double (`1e400`) is named
@@ -36,11 +39,31 @@ struct LoadedScene {
 // refused with the built-in names listed.
 Expected<LoadedScene> load_scene(const std::string& name);
 
-// A mesh file as a scene: an object per material the file gives (named FILE/MATERIAL, its base
-// colour and opacity: below 1, a transparent caster), else one object in the stage's colour; the
-// file's first camera and its lights where it has them, and default_stage's for what it lacks;
-// default_stage's ground under it all.
-Scene file_scene(const std::string& name, LoadedMesh loaded);
+// How file_objects makes a mesh file's objects.
+struct FileObjectOptions {
+  Material fallback;                 // for a file that gives no materials of its own
+  std::optional<Material> material;  // given: every object takes it, not the file's
+  int clip = 0;                      // the animation that moves the nodes; -1: none, all still
+  double frames_per_second = kDefaultFramesPerSecond;
+  glm::dmat4 placement{1.0};  // the file's root space -> world
+};
+// A mesh file's objects: an object per material its triangles use (named PREFIX/MATERIAL, with
+// its base colour, opacity, texture where every corner has coordinates, and the file's normals),
+// PREFIX alone where the file gives no materials or `material` replaces them. Where the clip moves
+// nodes, the triangles of each moving node are objects of their own (PREFIX/NODE,
+// PREFIX/NODE/MATERIAL) bound to it (node_animation.h), so that scene_at_frame moves them; a node
+// flat at rest (scale 0) is drawn still, with a warning in `warnings`.
+std::vector<SceneObject> file_objects(const std::string& prefix, const LoadedMesh& loaded,
+                                      const FileObjectOptions& options,
+                                      std::vector<std::string>& warnings);
+// The index of the file's animation of that name; an unknown one is refused with the names.
+Expected<int> find_clip(const LoadedMesh& loaded, const std::string& name);
+
+// A mesh file as a scene: file_objects (the file's first animation moving its nodes) on
+// default_stage's ground, the file's first camera and its lights where it has them, and
+// default_stage's for what it lacks.
+Scene file_scene(const std::string& name, const LoadedMesh& loaded,
+                 std::vector<std::string>& warnings);
 
 // Looks through the camera of that name among the file's (`render --camera NAME`); an unknown
 // name is refused with the names there are.

@@ -188,6 +188,44 @@ TEST(LoadMesh, NormalsAreTheFilesElseACreaseAngles) {
   for (const glm::vec3& n : placed->corner_normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-6f);
 }
 
+// The file's animations as clips of its node hierarchy (scripts/make_turntable_gltf.py), in
+// seconds; each triangle knows the node that placed it; the mesh stays at rest.
+TEST(LoadMesh, AnimationsAreClipsOfTheNodeHierarchy) {
+  auto loaded =
+      load_mesh(std::filesystem::path(SHADOWVOL_SOURCE_DIR) / "scenes/meshes/turntable.gltf");
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  ASSERT_NE(loaded->hierarchy, nullptr);
+  const NodeHierarchy& h = *loaded->hierarchy;
+  ASSERT_EQ(h.clips.size(), 2u);
+  EXPECT_EQ(h.clips[0].name, "Spin");
+  EXPECT_DOUBLE_EQ(h.clips[0].duration, 2.0);
+  EXPECT_EQ(h.clips[1].name, "Hop");
+  EXPECT_DOUBLE_EQ(h.clips[1].duration, 1.0);
+  // Parents before children: the turntable's two boxes name it as their parent.
+  std::vector<std::string> names;
+  for (const HierarchyNode& n : h.nodes) names.push_back(n.name);
+  const auto index = [&](const std::string& name) {
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  ASSERT_LT(index("Bob"), static_cast<int>(names.size()));
+  EXPECT_EQ(h.nodes[index("Bob")].parent, index("Turntable"));
+  EXPECT_EQ(h.nodes[index("Box")].parent, index("Turntable"));
+  EXPECT_TRUE(h.moves(index("Box"), 0));   // by its parent's turn
+  EXPECT_FALSE(h.moves(index("Bob"), 1));  // "Hop" lifts the box alone
+  EXPECT_FALSE(h.moves(index("Pillar"), 0));
+  EXPECT_NEAR(h.nodes[index("Bob")].rest_scale.y, 0.6, 1e-6);
+  // Halfway through the turn the turntable has turned a quarter: +x to -z.
+  const glm::dvec4 x_axis = h.world_at(index("Turntable"), 0, 0.5) * glm::dvec4(1, 0, 0, 0);
+  EXPECT_NEAR(x_axis.z, -1.0, 1e-6);
+  ASSERT_EQ(loaded->triangle_node.size(), loaded->mesh.triangle_count());
+  EXPECT_EQ(loaded->triangle_node[0], static_cast<std::uint32_t>(index("Pillar")));
+  // A still file has neither.
+  auto still = load_mesh(kData / "materials.gltf");
+  ASSERT_TRUE(still.ok()) << still.error().message;
+  EXPECT_EQ(still->hierarchy, nullptr);
+  EXPECT_TRUE(still->triangle_node.empty());
+}
+
 struct BadFile {
   const char* file;
   const char* message;  // what the error must say after "<path>: "
@@ -242,7 +280,9 @@ INSTANTIATE_TEST_SUITE_P(
         // (Found by fuzzing: assimp reads such a header forever.)
         BadFile{"element_twice.ply", "the PLY header defines the element 'face' twice"},
         BadFile{"no_end_header.ply",
-                "the PLY header has no end_header line (is the file cut short?)"}),
+                "the PLY header has no end_header line (is the file cut short?)"},
+        BadFile{"nan_key.gltf",
+                "animation 'Spin' moves node 'Turntable' by a key that is not a finite number"}),
     [](const auto& info) {
       std::string name = info.param.file[0] ? info.param.file : "directory";
       std::replace_if(

@@ -4,6 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <utility>
+
+#include <glm/common.hpp>
 
 #include "scene/scene_io.h"
 
@@ -52,6 +55,101 @@ TEST(SceneFile, AnimationSpinsMovesAndOrbits) {
   EXPECT_EQ(at.camera.target, glm::vec3(0, 1, 0));
   EXPECT_EQ(scene_at_frame(*scene, 0).camera.position, scene->camera.position);
   EXPECT_EQ(scene_at_frame(*scene, 0).objects[0].transform, scene->objects[0].transform);
+}
+
+// The bounds of an object's mesh in world space at its transform.
+std::pair<glm::vec3, glm::vec3> world_bounds(const SceneObject& o) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : o.mesh->positions) {
+    const glm::vec3 w(o.transform * glm::vec4(p, 1.0f));
+    lo = glm::min(lo, w), hi = glm::max(hi, w);
+  }
+  return {lo, hi};
+}
+glm::vec3 world_centre(const SceneObject& o) {
+  const auto [lo, hi] = world_bounds(o);
+  return (lo + hi) * 0.5f;
+}
+const SceneObject& named(const Scene& scene, const std::string& name) {
+  for (const SceneObject& o : scene.objects)
+    if (o.name == name) return o;
+  ADD_FAILURE() << "no object named " << name;
+  return scene.objects.front();
+}
+void expect_near(const glm::vec3& a, const glm::vec3& b, float within) {
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], within) << "axis " << i;
+}
+
+// scenes/meshes/turntable.gltf (scripts/make_turntable_gltf.py): a still pillar; a turntable
+// node turning about y once in 2 s, carrying a red box at (1.5, 0.5, 0) and a blue one at
+// (-1.5, 1, 0), scale 0.6, that rises to y = 2 and shrinks to 0.3 at 1 s ("Spin"); "Hop" lifts
+// the red box by 1 in 1 s.
+const std::string kTurntable = std::string(SHADOWVOL_SOURCE_DIR) + "/scenes/meshes/turntable.gltf";
+
+TEST(MeshFileScene, AnimatedNodesMoveAtTheirClipsTimes) {
+  auto loaded = load_scene(kTurntable);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  const Scene& scene = loaded->scene;
+  // What stays is an object per material; each moving node's triangles are objects of their own.
+  ASSERT_EQ(scene.objects.size(), 4u);
+  EXPECT_FALSE(named(scene, "turntable.gltf/Stone").node.bound());
+  EXPECT_TRUE(named(scene, "turntable.gltf/Box/Red").node.bound());
+  EXPECT_TRUE(named(scene, "turntable.gltf/Bob/Blue").node.bound());
+  EXPECT_EQ(named(scene, "turntable.gltf/Box/Red").material.color, glm::vec3(0.8f, 0.1f, 0.1f));
+  // Frame 15 at 30 frames a second: 0.5 s, a quarter turn, (x, y, z) -> (z, y, -x).
+  const Scene at = scene_at_frame(scene, 15);
+  expect_near(world_centre(named(at, "turntable.gltf/Box/Red")), {0.0f, 0.5f, -1.5f}, 1e-5f);
+  // The blue box halfway up (y 1.5) and down in size (0.45), its own motion turned by its parent.
+  const auto [lo, hi] = world_bounds(named(at, "turntable.gltf/Bob/Blue"));
+  expect_near((lo + hi) * 0.5f, {0.0f, 1.5f, 1.5f}, 1e-5f);
+  expect_near(hi - lo, glm::vec3(0.45f), 1e-5f);
+  expect_near(world_centre(named(at, "turntable.gltf/Stone")), {0.0f, 1.0f, 0.0f}, 1e-6f);
+  // 1.5 s: three quarters, between keys 90 degrees apart; 2 s, the whole turn: rest again, and
+  // the clip repeats after it.
+  expect_near(world_centre(named(scene_at_frame(scene, 45), "turntable.gltf/Box/Red")),
+              {0.0f, 0.5f, 1.5f}, 1e-5f);
+  expect_near(world_centre(named(scene_at_frame(scene, 60), "turntable.gltf/Box/Red")),
+              {1.5f, 0.5f, 0.0f}, 1e-5f);
+  EXPECT_EQ(scene_at_frame(scene, 75).objects[1].transform, at.objects[1].transform);
+  // Frames add up: 7 frames on from frame 8 is frame 15.
+  const Scene stepped = scene_at_frame(scene_at_frame(scene, 8), 7);
+  for (std::size_t i = 0; i < at.objects.size(); ++i)
+    EXPECT_EQ(stepped.objects[i].transform, at.objects[i].transform) << at.objects[i].name;
+}
+
+// A scene file places the file, picks its clip and its pace; its colour, where given, replaces
+// the file's materials; null holds it still.
+TEST(SceneFile, NamesAFilesClipAndPlacesItsHierarchy) {
+  const auto path = write_temp("clips", R"({
+    "camera": {"position": [0, 6, 11], "target": [0, 0.8, 0]},
+    "lights": [{"position": [4, 9, 5]}],
+    "objects": [
+      {"name": "hop", "mesh": ")" + kTurntable +
+                                            R"(", "clip": "Hop", "frames_per_second": 15,
+       "transform": {"translate": [2.5, 0, 0], "rotate": [0, 90, 0], "scale": 0.8}},
+      {"name": "still", "mesh": ")" + kTurntable +
+                                            R"(", "clip": null, "color": [0, 1, 0]}]})");
+  std::vector<std::string> warnings;
+  auto scene = load_scene_file(path, &warnings);
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_TRUE(warnings.empty());
+  // "Hop" moves only the red box; the file's materials name the objects.
+  ASSERT_EQ(scene->objects.size(), 4u);
+  EXPECT_FALSE(named(*scene, "hop/Blue").node.bound());
+  EXPECT_FALSE(named(*scene, "hop/Stone").node.bound());
+  EXPECT_TRUE(named(*scene, "hop/Box/Red").node.bound());
+  // Held still, with the scene's colour: one object, the file whole.
+  EXPECT_FALSE(named(*scene, "still").node.bound());
+  EXPECT_EQ(named(*scene, "still").material.color, glm::vec3(0, 1, 0));
+  // Frame 12 at 15 a second: 0.8 s, the box lifted from (1.5, 0.5, 0) to (1.5, 1.3, 0), then
+  // placed: turned a quarter about y ((x, y, z) -> (z, y, -x)), scaled 0.8, moved 2.5 along x.
+  const Scene at = scene_at_frame(*scene, 12);
+  expect_near(world_centre(named(at, "hop/Box/Red")), {2.5f, 1.04f, -1.2f}, 1e-5f);
+  expect_near(world_centre(named(at, "hop/Blue")), world_centre(named(*scene, "hop/Blue")), 0.0f);
+  EXPECT_EQ(named(at, "still").transform, named(*scene, "still").transform);
+  // The clip over (1 s, frame 15), it begins again: the box is back at rest.
+  expect_near(world_centre(named(scene_at_frame(*scene, 15), "hop/Box/Red")),
+              world_centre(named(*scene, "hop/Box/Red")), 1e-6f);
 }
 
 // A mesh file as a scene: its materials make its objects, its camera and lights replace the
@@ -265,7 +363,31 @@ INSTANTIATE_TEST_SUITE_P(
               "lights": [{"position": [1,5,1]}],
               "objects": [{"shape": "box", "opacity": 0.5, "color": [2, 1, 1]}]})",
             "scene.objects[0].color: a transparent object's colour filters the light it passes, "
-            "so each channel must lie in [0, 1]"}),
+            "so each channel must lie in [0, 1]"},
+        Bad{"unknown_clip",
+            std::string(R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"mesh": ")") +
+                SHADOWVOL_SOURCE_DIR + R"(/scenes/meshes/turntable.gltf", "clip": "Walk"}]})",
+            "scene.objects[0].clip: no animation named 'Walk'; the file's are 'Spin', 'Hop'"},
+        Bad{"clip_of_a_still_file",
+            std::string(R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"mesh": ")") +
+                SHADOWVOL_TEST_DATA + R"(/materials.gltf", "clip": "Spin"}]})",
+            "scene.objects[0].clip: no animation named 'Spin'; the file has none"},
+        Bad{"clip_not_a_name",
+            std::string(R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"mesh": ")") +
+                SHADOWVOL_SOURCE_DIR + R"(/scenes/meshes/turntable.gltf", "clip": 0}]})",
+            "scene.objects[0].clip: expected an animation's name, or null to hold the file still"},
+        Bad{"zero_frames_per_second",
+            std::string(R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"mesh": ")") +
+                SHADOWVOL_SOURCE_DIR + R"(/scenes/meshes/turntable.gltf",
+                "frames_per_second": 0}]})",
+            "scene.objects[0].frames_per_second: must be positive"},
+        Bad{"clip_of_a_shape", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
+              "lights": [{"position": [1,5,1]}], "objects": [{"shape": "box", "clip": "Spin"}]})",
+            "scene.objects[0].clip: only a mesh file has animations of its own"}),
     [](const auto& info) { return info.param.name; });
 
 // Whatever kind of nlohmann error escapes the reader, the message names the key path, the kind

@@ -326,6 +326,36 @@ TEST(BuiltinScenes, AnimatedFramesMatchTheReference) {
             << v.name << " " << f;
 }
 
+// A file's own animation (its node hierarchy moved by its clips, scene/node_animation.h), as
+// the file alone and placed twice by a scene file: frames across the clips, on every backend;
+// and one renderer drawing the frames in turn, so that what it keeps between frames moves too.
+TEST(AnimatedFiles, FramesOfTheirClipsMatchTheReference) {
+  for (const char* file : {"/scenes/meshes/turntable.gltf", "/scenes/turntables.json"}) {
+    auto loaded = load_scene(std::string(SHADOWVOL_SOURCE_DIR) + file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    for (const Variant& v : kVariants)
+      for (int f : {15, 37})
+        for (Method m : {Method::zpass, Method::zfail}) {
+          const Comparison c = verify(scene_at_frame(loaded->scene, f), m, Generator::automatic, v);
+          EXPECT_GT(c.pixels_compared, 1000u);
+          EXPECT_EQ(c.mismatched_outside_band, 0u) << file << " " << v.name << " " << f;
+        }
+    for (const Variant& v : {kSoft, kGlCpu, kGlVs}) {
+      auto made = make_renderer(v.backend, v.gl);
+      ASSERT_TRUE(made.ok()) << made.error().message;
+      const RenderOptions options{kWidth, kHeight, Method::automatic};
+      for (int f = 0; f < 60; f += 12) {
+        const Scene at = scene_at_frame(loaded->scene, f);
+        const Frame frame = made->renderer->render(at, options);
+        auto reference = trace_reference(at, kWidth, kHeight);
+        ASSERT_TRUE(reference.ok()) << reference.error().message;
+        EXPECT_EQ(compare(frame, *reference).mismatched_outside_band, 0u)
+            << file << " " << v.name << " frame " << f;
+      }
+    }
+  }
+}
+
 TEST(BuiltinScenes, UnknownNamesAreRefusedWithTheList) {
   auto scene = builtin_scene("dmeo");
   ASSERT_FALSE(scene.ok());
