@@ -18,17 +18,42 @@ std::string egl_error(const char* what) {
   return std::string(what) + " failed with EGL error " + code + kInstall;
 }
 
+// An initialised display with no window system: Mesa's surfaceless platform (llvmpipe, Mesa's
+// GPU drivers), else the first EGL device that initialises (EGL_EXT_platform_device: NVIDIA's
+// driver, which offers no surfaceless platform). EGL_NO_DISPLAY, with `why`, where neither does.
+EGLDisplay headless_display(std::string& why) {
+  const auto initialised = [](EGLDisplay d) {
+    EGLint major = 0, minor = 0;
+    return d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor) == EGL_TRUE;
+  };
+  why = "no headless EGL platform is available";
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
+    EGLDisplay d =
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (initialised(d)) return d;
+    why = egl_error("the surfaceless platform's eglInitialize");
+  }
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
+      epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (eglQueryDevicesEXT(16, devices, &count) == EGL_TRUE)
+      for (EGLint i = 0; i < count; ++i) {
+        EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+        if (initialised(d)) return d;
+      }
+    why = egl_error("initialising an EGL device");
+  }
+  return EGL_NO_DISPLAY;
+}
+
 }  // namespace
 
 Expected<Context> Context::create_headless() {
-  if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless") &&
-      !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base"))
-    return make_error(std::string("no headless EGL platform is available") + kInstall);
-  EGLDisplay display =
-      eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (display == EGL_NO_DISPLAY) return make_error(egl_error("eglGetPlatformDisplay"));
-  EGLint major = 0, minor = 0;
-  if (!eglInitialize(display, &major, &minor)) return make_error(egl_error("eglInitialize"));
+  std::string why;
+  EGLDisplay display = headless_display(why);
+  if (display == EGL_NO_DISPLAY)
+    return make_error(why.find(kInstall) == std::string::npos ? why + kInstall : why);
   Context ctx;
   ctx.display_ = display;
   if (!eglBindAPI(EGL_OPENGL_API)) return make_error(egl_error("eglBindAPI(OpenGL)"));

@@ -1,6 +1,6 @@
-// shadowvol gl: the OpenGL backend's context (issue #5, in progress). Headless through EGL
-// (Mesa's surfaceless platform: llvmpipe without a GPU, the vendor driver with one), GL loaded
-// with libepoxy.
+// shadowvol gl: the OpenGL backend's context. Headless through EGL (Mesa's surfaceless
+// platform: llvmpipe without a GPU, Mesa's GPU drivers with one; else an EGL device, as
+// NVIDIA's driver offers), GL loaded with libepoxy.
 //
 // Owns: creating and destroying an OpenGL 4.5 core context with no window, making it current
 // on the calling thread, and reporting what the driver offers the shadow-volume passes. Every
