@@ -1,5 +1,8 @@
 #include "gl/context.h"
 
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <utility>
 
 #include <epoxy/egl.h>
@@ -21,19 +24,30 @@ std::string egl_error(const char* what) {
 // An initialised display with no window system: Mesa's surfaceless platform (llvmpipe, Mesa's
 // GPU drivers), else the first EGL device that initialises (EGL_EXT_platform_device: NVIDIA's
 // driver, which offers no surfaceless platform). EGL_NO_DISPLAY, with `why`, where neither does.
+// SHADOWVOL_EGL_PLATFORM=surfaceless or device takes that one alone (a machine whose first
+// platform fails, or a check of the second).
 EGLDisplay headless_display(std::string& why) {
   const auto initialised = [](EGLDisplay d) {
     EGLint major = 0, minor = 0;
     return d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor) == EGL_TRUE;
   };
-  why = "no headless EGL platform is available";
-  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
+  const char* chosen = std::getenv("SHADOWVOL_EGL_PLATFORM");
+  const std::string only = chosen ? chosen : "";
+  if (!only.empty() && only != "surfaceless" && only != "device") {
+    why = "SHADOWVOL_EGL_PLATFORM=" + only + ": expected surfaceless or device";
+    return EGL_NO_DISPLAY;
+  }
+  why = "no headless EGL platform is available" +
+        (only.empty() ? std::string() : " (SHADOWVOL_EGL_PLATFORM=" + only + ")") + kInstall;
+  if (only != "device" &&
+      epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
     EGLDisplay d =
         eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (initialised(d)) return d;
     why = egl_error("the surfaceless platform's eglInitialize");
   }
-  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
+  if (only != "surfaceless" &&
+      epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
       epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
     EGLDeviceEXT devices[16];
     EGLint count = 0;
@@ -52,8 +66,7 @@ EGLDisplay headless_display(std::string& why) {
 Expected<Context> Context::create_headless() {
   std::string why;
   EGLDisplay display = headless_display(why);
-  if (display == EGL_NO_DISPLAY)
-    return make_error(why.find(kInstall) == std::string::npos ? why + kInstall : why);
+  if (display == EGL_NO_DISPLAY) return make_error(why);
   Context ctx;
   ctx.display_ = display;
   if (!eglBindAPI(EGL_OPENGL_API)) return make_error(egl_error("eglBindAPI(OpenGL)"));
