@@ -239,16 +239,15 @@ int run_city_suite(const CitySuiteOptions& options) {
                        {"objects_over_one_mesh", objects_ms / std::max(mesh_ms, 1e-9)}};
   }
 
-  std::string sizes_label;
-  for (const int b : options.sizes)
-    sizes_label += (sizes_label.empty() ? "" : ", ") + std::to_string(b);
+  std::vector<std::string> sizes;  // the x axis's labels
+  for (const int b : options.sizes) sizes.push_back(std::to_string(b));
   Chart chart{"City (" + std::to_string(options.width) + "x" + std::to_string(options.height) +
                   ", " + backend + "): mean ms a frame by city size",
-              "buildings: " + sizes_label,
+              "buildings",
               2,
               {}};
   for (std::size_t p = 0; p < std::size(kPaths); ++p) {
-    PlotPanel panel{std::string(kPaths[p].name) + " path", {}, {}};
+    PlotPanel panel{std::string(kPaths[p].name) + " path", {}, {}, sizes};
     for (std::size_t m = 0; m < std::size(kMethods); ++m)
       panel.series.push_back({kMethods[m].name, kMethods[m].color, scaling[p][m]});
     chart.panels.push_back(std::move(panel));

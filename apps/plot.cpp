@@ -64,11 +64,15 @@ void draw_panel(Canvas& canvas, int left, int top, const PlotPanel& panel,
     canvas.fill_rect(x0, y, x1, y + 1, kGrid);
     canvas.text(x0 - 8, y - kText * 0.6, short_count(v), kText, kInk, Canvas::Align::right);
   }
-  const double x_step = std::max(1.0, nice_step(x_max, 5));
+  const bool labelled = !panel.x_ticks.empty();
+  const double x_step = labelled ? 1.0 : std::max(1.0, nice_step(x_max, 5));
   for (double f = 0.0; f <= x_max + 1e-9; f += x_step) {
     const double x = std::round(px(f));
+    const std::size_t i = static_cast<std::size_t>(f);
     canvas.fill_rect(x, y1, x + 1, y1 + 5, kInk);
-    canvas.text(x, y1 + 8, short_count(f), kText, kInk, Canvas::Align::centre);
+    canvas.text(x, y1 + 8,
+                labelled ? (i < panel.x_ticks.size() ? panel.x_ticks[i] : "") : short_count(f),
+                kText, kInk, Canvas::Align::centre);
   }
   canvas.text((x0 + x1) / 2, y1 + 30, x_label, kText, kInk, Canvas::Align::centre);
   canvas.fill_rect(x0, y0, x0 + 1, y1 + 1, kInk);  // axes

@@ -26,6 +26,9 @@ struct PlotPanel {
   std::string title;
   std::vector<PlotSeries> series;
   std::string x_label;  // under this panel; empty: the chart's
+  // A label per point (x = 0, 1, ...: lamps, buildings, slices), each shown; empty: the points'
+  // indices (frames), in round steps.
+  std::vector<std::string> x_ticks = {};
 };
 
 struct Chart {

@@ -104,6 +104,13 @@ TEST(Chart, DrawsEachSeriesInItsColourWhereItsValuesFall) {
   EXPECT_NE(other.rgba, image.rgba);
   relabelled.panels[0].x_label = "frame";
   EXPECT_EQ(draw_chart(relabelled).rgba, image.rgba);
+  // Labels per point (lamps, buildings) replace the indices under the ticks: the indices' own
+  // text draws the same image, other text another.
+  Chart ticked = one;
+  ticked.panels[0].x_ticks = {"0", "1", "2", "3"};
+  EXPECT_EQ(draw_chart(ticked).rgba, image.rgba);
+  ticked.panels[0].x_ticks = {"1", "2", "4", "8"};
+  EXPECT_NE(draw_chart(ticked).rgba, image.rgba);
 }
 
 }  // namespace
