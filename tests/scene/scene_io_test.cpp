@@ -117,6 +117,27 @@ TEST(MeshFileScene, AnimatedNodesMoveAtTheirClipsTimes) {
     EXPECT_EQ(stepped.objects[i].transform, at.objects[i].transform) << at.objects[i].name;
 }
 
+// What cannot be moved is drawn still and said: a channel for a node outside the file's scene,
+// a node scaled to nothing at rest (its mesh at rest holds no shape to move).
+TEST(MeshFileScene, WhatCannotBeAnimatedIsSaid) {
+  auto other = load_scene(std::string(SHADOWVOL_TEST_DATA) + "/other_scenes_nodes.gltf");
+  ASSERT_TRUE(other.ok()) << other.error().message;
+  const auto said = [](const std::vector<std::string>& warnings, const std::string& what) {
+    for (const std::string& w : warnings)
+      if (w.find(what) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(said(other->warnings,
+                   "animation 'Spin' moves node 'Bob', which the file does not "
+                   "have; left out"));
+  for (const SceneObject& o : other->scene.objects) EXPECT_FALSE(o.node.bound()) << o.name;
+  auto flat = load_scene(std::string(SHADOWVOL_TEST_DATA) + "/flat_at_rest.gltf");
+  ASSERT_TRUE(flat.ok()) << flat.error().message;
+  EXPECT_TRUE(said(flat->warnings, "node 'Bob' is flat at rest (a scale of 0)"));
+  EXPECT_FALSE(named(flat->scene, "flat_at_rest.gltf/Blue").node.bound());
+  EXPECT_TRUE(named(flat->scene, "flat_at_rest.gltf/Box/Red").node.bound());
+}
+
 // A scene file places the file, picks its clip and its pace; its colour, where given, replaces
 // the file's materials; null holds it still.
 TEST(SceneFile, NamesAFilesClipAndPlacesItsHierarchy) {
