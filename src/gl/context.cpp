@@ -44,7 +44,7 @@ EGLDisplay headless_display(std::string& why) {
     EGLDisplay d =
         eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (initialised(d)) return d;
-    why = egl_error("the surfaceless platform's eglInitialize");
+    why = egl_error("eglInitialize");
   }
   if (only != "surfaceless" &&
       epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
@@ -56,7 +56,7 @@ EGLDisplay headless_display(std::string& why) {
         EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
         if (initialised(d)) return d;
       }
-    why = egl_error("initialising an EGL device");
+    if (only == "device") why = egl_error("eglInitialize (an EGL device)");
   }
   return EGL_NO_DISPLAY;
 }
