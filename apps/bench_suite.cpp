@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli.h"
 #include "image_file.h"
 #include "plot.h"
 #include "scene/scene.h"
@@ -136,8 +137,10 @@ int run_spsv_suite(const SuiteOptions& options) {
       renderers.push_back(soft::soft_renderer());
     std::vector<Series> all_series(std::size(kMethods));
     Oracle oracle;
+    cli::StatusLine status;
     for (int f = 0; f < options.frames; ++f) {
-      std::fprintf(stderr, "\r%s: frame %d of %d   ", scene.name.c_str(), f + 1, options.frames);
+      status.show(scene.name + ": frame " + std::to_string(f + 1) + " of " +
+                  std::to_string(options.frames));
       const Scene at = scene_at_frame(scene, f);
       Oracle::Work work[std::size(kMethods)];  // per method: per object, per tile
       for (std::size_t m = 0; m < std::size(kMethods); ++m) {
@@ -153,7 +156,7 @@ int run_spsv_suite(const SuiteOptions& options) {
       }
       oracle.add(work[kZpassPrefill], work[kZfail]);
     }
-    std::fprintf(stderr, "\r%60s\r", "");
+    status.clear();
     for (std::size_t m = 0; m < std::size(kMethods); ++m) {
       const char* name = kMethods[m].name;
       const Series& series = all_series[m];
@@ -260,14 +263,12 @@ bool write_suite_outputs(const std::string& json_path, const std::string& json,
                          const std::string& csv_path, const std::string& csv,
                          const std::string& plot_path, const Chart& chart, const char* what,
                          std::FILE* table) {
-  if (!json_path.empty() && !write_text(json_path, json)) {
-    std::cerr << "shadowvol: error: " << json_path << ": cannot write the JSON\n";
-    return false;
-  }
-  if (!csv_path.empty() && !write_text(csv_path, csv)) {
-    std::cerr << "shadowvol: error: " << csv_path << ": cannot write the CSV\n";
-    return false;
-  }
+  for (const auto& [path, text] : {std::pair{&json_path, &json}, std::pair{&csv_path, &csv}})
+    if (!path->empty())
+      if (auto ok = write_text(*path, *text); !ok) {
+        std::cerr << "shadowvol: error: " << ok.error().message << "\n";
+        return false;
+      }
   if (!plot_path.empty()) {
     if (auto ok = write_chart(plot_path, chart); !ok) {
       std::cerr << "shadowvol: error: " << ok.error().message << "\n";

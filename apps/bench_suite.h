@@ -25,20 +25,18 @@
 #include <vector>
 
 #include "backend/backend.h"
+#include "output_file.h"
 #include "plot.h"
 #include "render/renderer.h"
 
 namespace shadowvol {
 
-// Writes text to a file, or to standard output for "-"; false when it cannot.
-inline bool write_text(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text;
-    return true;
-  }
-  std::ofstream out(path);
-  out << text;
-  return static_cast<bool>(out.flush());
+// Writes text to a file whole (write_file), or to standard output for "-".
+inline Expected<void> write_text(const std::string& path, const std::string& text) {
+  if (path != "-") return write_file(path, text);
+  std::cout << text << std::flush;
+  if (!std::cout) return make_error("standard output: cannot be written");
+  return {};
 }
 
 // A suite's renderer of `backend` (and its gl settings) for frames of `options`, or null with the

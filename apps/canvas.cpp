@@ -7,12 +7,15 @@
 #include <cstdint>
 #include <cstring>
 
+#include "output_file.h"
+
 namespace shadowvol {
 
 struct Canvas::State {
   cairo_surface_t* surface = nullptr;
   cairo_t* cr = nullptr;
   std::string path;  // an SVG's
+  std::string svg;   // its bytes, written to `path` whole by finish()
   int width = 0, height = 0;
   ~State() {
     if (cr != nullptr) cairo_destroy(cr);
@@ -57,7 +60,12 @@ Canvas Canvas::svg(const std::string& path, int w, int h) {
   auto s = std::make_unique<State>();
   s->width = w, s->height = h;
   s->path = path;
-  s->surface = cairo_svg_surface_create(path.c_str(), w, h);
+  s->surface = cairo_svg_surface_create_for_stream(
+      [](void* to, const unsigned char* data, unsigned int size) {
+        static_cast<std::string*>(to)->append(reinterpret_cast<const char*>(data), size);
+        return CAIRO_STATUS_SUCCESS;
+      },
+      &s->svg, w, h);
   s->cr = cairo_create(s->surface);
   set_colour(s->cr, glm::vec3(1.0f));
   cairo_paint(s->cr);
@@ -161,7 +169,8 @@ Expected<void> Canvas::finish() {
   const cairo_status_t status = cairo_surface_status(state_->surface);
   if (status != CAIRO_STATUS_SUCCESS)
     return make_error((state_->path.empty() ? std::string("the picture") : state_->path) +
-                      ": cannot be drawn or written (" + cairo_status_to_string(status) + ")");
+                      ": cannot be drawn (" + cairo_status_to_string(status) + ")");
+  if (!state_->path.empty()) return write_file(state_->path, state_->svg);
   return {};
 }
 

@@ -9,9 +9,9 @@
 
 namespace shadowvol::cli {
 
-int fail(const std::string& message) {
+int fail(const std::string& message, int code) {
   std::cerr << "shadowvol: error: " << message << "\n";
-  return 1;
+  return code;
 }
 
 void warn(const std::string& message) { std::cerr << "shadowvol: warning: " << message << "\n"; }

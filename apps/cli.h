@@ -18,8 +18,14 @@
 
 namespace shadowvol::cli {
 
-// Prints "shadowvol: error: message" on stderr; returns the exit code 1.
-int fail(const std::string& message);
+// Exit codes: 0 done, 1 an error (verify: the frame differs from the reference), 2 a command line
+// that cannot be parsed (verify: any error, so that a script tells "differs" from "could not
+// compare").
+inline constexpr int kUsageError = 2;
+inline constexpr int kVerifyError = 2;
+
+// Prints "shadowvol: error: message" on stderr; returns `code`.
+int fail(const std::string& message, int code = 1);
 void warn(const std::string& message);
 
 // One status line on stderr, redrawn in place, only when stderr is a terminal: a person waiting

@@ -16,6 +16,7 @@
 #include "bench_suite.h"
 #include "bench_versus.h"
 #include "cli.h"
+#include "output_file.h"
 #include "image_file.h"
 #include "plot.h"
 #include "render/frame_json.h"
@@ -368,6 +369,10 @@ int suite(const BenchArgs& args) {
 }
 
 int run(const BenchArgs& args) {
+  std::vector<std::string> inputs = args.scenes;
+  inputs.insert(inputs.end(), args.stages.begin(), args.stages.end());
+  if (auto ok = check_outputs({args.json_file, args.csv, args.plot}, inputs); !ok)
+    return fail(ok.error().message);
   if (args.given("--city-sizes") && args.suite != "city")
     return fail("--city-sizes needs --suite city");
   if (!args.suite.empty() || !args.csv.empty() || (!args.plot.empty() && args.versus.empty()))

@@ -5,11 +5,13 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "image_file.h"
+#include "output_file.h"
 #include "plot.h"
 #include "render/frame_json.h"
 #include "render/frame_outputs.h"
@@ -129,6 +131,11 @@ int run(const RenderArgs& args) {
   options.show_volumes = args.show_volumes;
   options.tile_work = !args.heatmap.empty();
   options.count_fill = args.stats || args.json;
+  std::vector<std::string> outputs{args.out, args.depth, args.ids, args.heatmap, args.light_map};
+  if (!args.mask.empty())
+    for (std::size_t l = 0; l < scene.lights.size(); ++l)
+      outputs.push_back(mask_path(args.mask, l, scene.lights.size()));
+  if (auto ok = check_outputs(outputs, {args.frame.scene}); !ok) return fail(ok.error().message);
   const auto side = samples_side(args.samples, options.width, options.height);
   if (!side) return fail("--samples: " + side.error().message);
   auto renderer = make_frame_renderer(*resolved, options);

@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "image_file.h"
+#include "output_file.h"
 #include "render/frame_json.h"
 #include "trace/reference.h"
 #include "verify/verify.h"
@@ -23,12 +24,14 @@ struct VerifyArgs {
 
 int run(const VerifyArgs& args) {
   auto resolved = resolve(args.frame);
-  if (!resolved) return fail(resolved.error().message);
+  if (!resolved) return fail(resolved.error().message, kVerifyError);
   RenderOptions options = resolved->options;
   options.count_fill = args.json;        // the JSON carries the volumes' fill
   const Scene& scene = resolved->scene;  // at --frame
+  if (auto ok = check_outputs({args.diff}, {args.frame.scene}); !ok)
+    return fail(ok.error().message, kVerifyError);
   auto renderer = make_frame_renderer(*resolved, options);
-  if (!renderer) return fail(renderer.error().message);
+  if (!renderer) return fail(renderer.error().message, kVerifyError);
   const std::string backend((*renderer)->backend().name());
   StatusLine status;  // on a terminal only: what verify is doing, and how far along
   const Progress progress = [&status](std::string_view doing, float fraction) {
@@ -37,7 +40,7 @@ int run(const VerifyArgs& args) {
   status.show("rendering " + scene.name + " on the " + backend + " backend");
   const Frame frame = (*renderer)->render(scene, options);
   auto reference = trace_reference(scene, options.width, options.height, progress);
-  if (!reference) return fail(reference.error().message);
+  if (!reference) return fail(reference.error().message, kVerifyError);
   status.show("comparing");
   const Comparison c = compare(frame, *reference, progress);
   status.clear();
@@ -46,9 +49,11 @@ int run(const VerifyArgs& args) {
     return fail(
         "nothing to compare: no visible surface faces a light (check the camera and the "
         "lights of " +
-        scene.name + ")");
+            scene.name + ")",
+        kVerifyError);
   if (!args.diff.empty())
-    if (auto ok = write_png(args.diff, diff_image(frame, c)); !ok) return fail(ok.error().message);
+    if (auto ok = write_png(args.diff, diff_image(frame, c)); !ok)
+      return fail(ok.error().message, kVerifyError);
   if (args.json) {
     nlohmann::json out = to_json(options);
     out.update({{"scene", scene.name},

@@ -2,41 +2,47 @@
 
 #include <bit>
 #include <cstring>
-#include <fstream>
+#include <string>
 
 #include <stb/stb_image_write.h>
+
+#include "output_file.h"
 
 namespace shadowvol {
 namespace {
 
-Error cannot_write(const std::string& path) {
-  return make_error(path + ": cannot write the image (is the directory there and writable?)");
+// The PNG in memory, so that it reaches the disk whole or not at all (write_file).
+Expected<void> write_png(const std::string& path, int width, int height, int channels,
+                         const std::uint8_t* pixels) {
+  std::string bytes;
+  const auto append = [](void* to, void* data, int size) {
+    static_cast<std::string*>(to)->append(static_cast<const char*>(data),
+                                          static_cast<std::size_t>(size));
+  };
+  if (stbi_write_png_to_func(append, &bytes, width, height, channels, pixels, width * channels) ==
+      0)
+    return make_error(path + ": the image cannot be encoded as a PNG");
+  return write_file(path, bytes);
 }
 
 }  // namespace
 
 Expected<void> write_png(const std::string& path, const Image& img) {
-  if (stbi_write_png(path.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4) == 0)
-    return cannot_write(path);
-  return {};
+  return write_png(path, img.width, img.height, 4, img.rgba.data());
 }
 
 Expected<void> write_png(const std::string& path, const GreyImage& img) {
-  if (stbi_write_png(path.c_str(), img.width, img.height, 1, img.value.data(), img.width) == 0)
-    return cannot_write(path);
-  return {};
+  return write_png(path, img.width, img.height, 1, img.value.data());
 }
 
 Expected<void> write_pfm(const std::string& path, const DepthImage& img) {
   static_assert(std::endian::native == std::endian::little, "PFM's scale -1 says little-endian");
-  std::ofstream out(path, std::ios::binary);
-  out << "Pf\n" << img.width << " " << img.height << "\n-1.0\n";
+  std::string bytes =
+      "Pf\n" + std::to_string(img.width) + " " + std::to_string(img.height) + "\n-1.0\n";
+  const std::size_t row = sizeof(float) * static_cast<std::size_t>(img.width);
   for (int y = img.height - 1; y >= 0; --y)
-    out.write(reinterpret_cast<const char*>(&img.depth[std::size_t(y) * img.width]),
-              static_cast<std::streamsize>(sizeof(float) * img.width));
-  out.close();
-  if (!out) return cannot_write(path);
-  return {};
+    bytes.append(reinterpret_cast<const char*>(&img.depth[std::size_t(y) * img.width]), row);
+  return write_file(path, bytes);
 }
 
 }  // namespace shadowvol

@@ -24,6 +24,7 @@
 #include "core/shading_normals.h"
 #include "core/volume.h"
 #include "scene/declared_size.h"
+#include "scene/input_file.h"
 #include "scene/texture_io.h"
 
 namespace shadowvol {
@@ -381,12 +382,8 @@ Expected<void> gather_animations(const aiScene& scene, NodeHierarchy& hierarchy,
 
 Expected<LoadedMesh> load_mesh(const std::filesystem::path& path, const LoadProgress& progress) {
   const std::string name = path.string();
+  if (auto ok = check_input_file(path, "mesh file"); !ok) return ok.error();
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return make_error(name + ": no such file");
-  if (std::filesystem::is_directory(path, ec))
-    return make_error(name + ": is a directory, not a mesh file");
-  if (!std::ifstream(path, std::ios::binary).good())
-    return make_error(name + ": cannot be opened for reading (check its permissions)");
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (size == 0 && !ec) return make_error(name + ": the file is empty");
   if (auto fits = check_declared_size(path, size); !ec && !fits) return fits.error();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <ios>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -17,6 +18,7 @@
 
 #include "core/shapes.h"
 #include "core/volume.h"
+#include "scene/input_file.h"
 #include "scene/mesh_io.h"
 #include "scene/stage.h"
 
@@ -460,6 +462,7 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
 Expected<Scene> load_scene_file(const std::filesystem::path& path,
                                 std::vector<std::string>* warnings) {
   const std::string name = path.string();
+  if (auto ok = check_input_file(path, "scene file"); !ok) return ok.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(name + ": cannot be opened for reading");
   json root;
@@ -471,6 +474,8 @@ Expected<Scene> load_scene_file(const std::filesystem::path& path,
         true, /*ignore_comments=*/true);
   } catch (const json::exception& e) {  // every kind: a syntax error, a number past a double's
     return make_error(name + ": " + describe_json_error(e, position.path()));
+  } catch (const std::ios_base::failure& e) {  // a read that failed part way (an I/O error)
+    return make_error(name + ": cannot be read (" + e.code().message() + ")");
   }
   Reader r{name, {}};
   std::vector<std::string> ignored;
@@ -489,9 +494,9 @@ Expected<LoadedScene> load_scene(const std::string& name) {
   }
   auto builtin = builtin_scene(name);
   if (builtin) return LoadedScene{std::move(*builtin), {}, {}};
-  std::error_code ec;
-  if (!std::filesystem::exists(name, ec)) return builtin.error();  // lists the built-in names
-  if (std::filesystem::path(name).extension() == ".json") {
+  if (!names_a_path(name)) return builtin.error();  // lists the built-in names
+  if (auto ok = check_input_file(name, "scene or mesh file"); !ok) return ok.error();
+  if (lower_extension(name) == ".json") {
     std::vector<std::string> warnings;
     auto scene = load_scene_file(name, &warnings);
     if (!scene) return scene.error();

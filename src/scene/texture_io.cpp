@@ -8,6 +8,8 @@
 
 #include <stb/stb_image.h>
 
+#include "scene/input_file.h"
+
 namespace shadowvol {
 namespace {
 std::string why_not() {
@@ -42,8 +44,7 @@ Expected<Texture> decode_texture(const std::uint8_t* bytes, std::size_t size,
 
 Expected<Texture> load_texture(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return make_error(name + ": no such file");
+  if (auto ok = check_input_file(path, "texture"); !ok) return ok.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(name + ": cannot be opened for reading");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),

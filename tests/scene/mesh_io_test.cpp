@@ -247,7 +247,7 @@ TEST_P(LoadMeshRefuses, WithAMessageNamingTheFileAndTheProblem) {
 INSTANTIATE_TEST_SUITE_P(
     BadFiles, LoadMeshRefuses,
     ::testing::Values(
-        BadFile{"missing.obj", "no such file"}, BadFile{"", "is a directory"},
+        BadFile{"missing.obj", "no such file"}, BadFile{"", "is a folder, not a mesh file"},
         BadFile{"empty.obj", "the file is empty"},
         BadFile{"garbage.bin", "cannot be read as a mesh"},
         BadFile{"lines_only.obj", "no triangles"},
