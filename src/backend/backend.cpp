@@ -35,20 +35,25 @@ Expected<std::unique_ptr<Renderer>> make_gl(const gl::GlSettings& settings) {
 
 Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_settings,
                                      const RenderOptions& options) {
-  // Volumes built in a shader: only the gl backend has one.
+  // What only the gl backend does, asked for by name: never dropped in silence on the soft one.
   const bool gpu_volumes = gl_settings.volumes != gl::VolumePath::cpu;
-  const std::string path = "--volumes " + std::string(gl::to_string(gl_settings.volumes));
+  const bool gl_counts = gl_settings.counts != gl::CountTarget::automatic;
+  const bool gl_only = gpu_volumes || gl_counts;
+  const std::string path = gpu_volumes ? "volumes built in a shader (--volumes " +
+                                             std::string(gl::to_string(gl_settings.volumes)) + ")"
+                                       : "counting in a target of gl's (--counts " +
+                                             std::string(gl::to_string(gl_settings.counts)) + ")";
+  const std::string needs_gl = path + (gpu_volumes ? " need" : " needs") + " the gl backend";
   auto soft = [] { return std::make_unique<Renderer>(std::make_unique<soft::SoftBackend>()); };
   if (backend == Backend::soft) {
-    if (gpu_volumes)
-      return make_error("volumes built in a shader (" + path + ") need the gl backend");
+    if (gl_only) return make_error(needs_gl);
     return MadeRenderer{soft(), ""};
   }
   if (auto ok = gl::check_settings(gl_settings, options.generator); !ok) return ok.error();
   if (auto drawable = gl::check_frame(gl_settings, options); !drawable) {
     const std::string& reason = drawable.error().message;
     if (backend == Backend::gl) return make_error(reason + "; use --backend soft");
-    if (gpu_volumes) return make_error(path + " needs the gl backend, but " + reason);
+    if (gl_only) return make_error(needs_gl + ", but " + reason);
     return MadeRenderer{soft(), "backend auto: soft, since " + reason};
   }
   auto gl = make_gl(gl_settings);
@@ -58,7 +63,7 @@ Expected<MadeRenderer> make_renderer(Backend backend, const gl::GlSettings& gl_s
     return MadeRenderer{std::move(*gl), note};
   }
   if (backend == Backend::gl) return gl.error();
-  if (gpu_volumes) return make_error(path + " needs the gl backend, and " + gl.error().message);
+  if (gl_only) return make_error(needs_gl + ", and " + gl.error().message);
   return MadeRenderer{soft(), "backend auto: soft, since " + gl.error().message};
 }
 

@@ -302,6 +302,9 @@ inline int facing_in_double(const glm::vec4& plane, const glm::vec4& light) {
   return (side > 0.0) - (side < 0.0);
 }
 
+// A face's weight from its facing (+1, 0 edge-on, -1) for a face of nonzero area.
+inline int facing_weight(int facing, bool standard) { return standard ? facing >= 0 : facing; }
+
 // A face-weight value that no generator produces: "the float test could not decide".
 constexpr std::int8_t kUndecided = 2;
 
@@ -312,7 +315,13 @@ void compute_face_weights(const Topology& topo, const glm::vec4& light, Generato
   assert(generator != Generator::automatic && weights.size() >= faces.end - faces.begin);
   // standard counts only light-facing faces (Intel; GPU Gems 3 §11.2.2); robust and
   // multiplicity count every face with its sign (GPU Gems 3 §11.3.1; Kim et al. §1.2).
-  const int lowest = generator == Generator::standard ? 0 : -1;
+  // A light in a face's plane (on the surface itself: a lamp on a table) sees it edge-on. The
+  // shadow is then what lies beyond the mesh along rays from the light (docs/volumes.md, "A light
+  // on a surface"): robust and multiplicity give such a face no volume; standard, which sweeps what
+  // the back faces do not face, takes it as facing the light, so that the silhouette runs where the
+  // back faces end.
+  const bool standard = generator == Generator::standard;
+  const int lowest = standard ? 0 : -1;
   const std::size_t n = faces.end - faces.begin;
   const float* __restrict px = topo.face_planes.x.data() + faces.begin;
   const float* __restrict py = topo.face_planes.y.data() + faces.begin;
@@ -336,7 +345,7 @@ void compute_face_weights(const Topology& topo, const glm::vec4& light, Generato
     const bool zero_area = (px[i] == 0.0f) & (py[i] == 0.0f) & (pz[i] == 0.0f);  // exactly 0
     const bool sure = (std::abs(side) > bound + kAbsolute) | zero_area;
     const int facing = (side > 0.0f) - (side < 0.0f);
-    const int weight = std::max(facing, lowest);
+    const int weight = std::max(facing, lowest) + (standard & (facing == 0) & !zero_area);
     const int unsure = !sure;
     out[i] = static_cast<std::int8_t>(weight + unsure * (kUndecided - weight));  // no branch
     undecided |= unsure;
@@ -345,7 +354,7 @@ void compute_face_weights(const Topology& topo, const glm::vec4& light, Generato
   for (std::size_t i = 0; i < n; ++i)
     if (out[i] == kUndecided)
       out[i] = static_cast<std::int8_t>(
-          std::max(facing_in_double(topo.face_planes[faces.begin + i], light), lowest));
+          facing_weight(facing_in_double(topo.face_planes[faces.begin + i], light), standard));
 }
 
 std::size_t find_casting_edges(const Topology& topo, Generator generator,

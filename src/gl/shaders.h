@@ -289,7 +289,7 @@ void main() {
 // and the extrusion onto the far plane, so that both paths decide alike.
 #define SHADOWVOL_GLSL_VOLUME                                                                    \
   "layout(location = 4) uniform vec4 light;  // object space\n"                                  \
-  "layout(location = 5) uniform bool robust;  // false: standard, front faces only\n"            \
+  "layout(location = 5) uniform bool robust;  // false: standard, light-facing faces\n"            \
   "layout(location = 6) uniform int caps;     // kCapsNone, kCapsLight, kCapsAll\n"              \
   "layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted\n"  \
   "layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity\n" \
@@ -306,6 +306,22 @@ void main() {
   "  if (da > 0.0 || db > 0.0 || dc > 0.0) return 1;\n"                                          \
   "  if (da < 0.0 || db < 0.0 || dc < 0.0) return -1;\n"                                         \
   "  return 0;\n"                                                                                \
+  "}\n"                                                                                          \
+  "\n"                                                                                           \
+  "// Its weight (core/volume.cpp, compute_face_weights): robust, the facing; standard, 1 where\n" \
+  "// it faces the light or is edge-on to it (a light on its plane) and has an area, else 0.\n"   \
+  "int face_weight(vec4 a, vec4 b, vec4 c) {\n"                                                   \
+  "  int f = facing(a, b, c);\n"                                                                  \
+  "  if (robust || f != 0) return robust ? f : max(f, 0);\n"                                     \
+  "  precise vec3 n = cross(b.xyz - a.xyz, c.xyz - a.xyz);\n"                                     \
+  "  return n != vec3(0.0) ? 1 : 0;\n"                                                           \
+  "}\n"                                                                                          \
+  "\n"                                                                                           \
+  "// The weight of its dark cap: robust, -weight; standard, 1 for a face that faces away from\n"  \
+  "// the light (in its own vertex order), else none: the front faces' caps would vanish where\n" \
+  "// they are edge-on to it (core/volume.cpp, cap_weights).\n"                                    \
+  "int dark_cap_weight(vec4 a, vec4 b, vec4 c, int weight) {\n"                                  \
+  "  return robust ? -weight : (facing(a, b, c) < 0 ? 1 : 0);\n"                                 \
   "}\n"                                                                                          \
   "\n"                                                                                           \
   "// Where the ray from p away from the light meets the far plane (core/volume.h, extrude).\n"  \
@@ -339,37 +355,38 @@ void emit_far(int i, int weight) {
 void main() {
   vec4 p[6];
   for (int i = 0; i < 6; ++i) p[i] = object_position[i];
-  int f = facing(p[0], p[2], p[4]);
-  if (f == 0 || (!robust && f < 0)) return;
+  int w = face_weight(p[0], p[2], p[4]), dark = dark_cap_weight(p[0], p[2], p[4], w);
+  if (w == 0 && dark == 0) return;
   if (caps != 0) {
     // The light cap keeps its own vertex order (the depth pass's), whatever its sign: a
     // reversed triangle may rasterize to other depths. Hence the separate kEmitNegative draw.
-    if (emit == 2 || (emit == 0 && f > 0) || (emit == 1 && f < 0)) {
-      emit_vertex(0, f);
-      emit_vertex(2, f);
-      emit_vertex(4, f);
+    if (w != 0 && (emit == 2 || (emit == 0 && w > 0) || (emit == 1 && w < 0))) {
+      emit_vertex(0, w);
+      emit_vertex(2, w);
+      emit_vertex(4, w);
       EndPrimitive();
     }
-    // The dark cap, weight -f: reversed where a draw takes only weight +1. (A directional
-    // light's dark caps at infinity collapse to a point: none.)
-    if (caps == 2 && emit != 1 && (light.w != 0.0 || far_plane != vec4(0.0, 0.0, 0.0, -1.0))) {
-      bool reverse = emit == 0 && f > 0;
-      int weight = emit == 0 ? 1 : -f;
+    // The dark cap: reversed where a draw takes only weight +1. (A directional light's dark
+    // caps at infinity collapse to a point: none.)
+    if (dark != 0 && caps == 2 && emit != 1 &&
+        (light.w != 0.0 || far_plane != vec4(0.0, 0.0, 0.0, -1.0))) {
+      bool reverse = emit == 0 && dark < 0;
+      int weight = emit == 0 ? 1 : dark;
       emit_far(0, weight);
       emit_far(reverse ? 4 : 2, weight);
       emit_far(reverse ? 2 : 4, weight);
       EndPrimitive();
     }
   }
-  if (emit == 1) return;
+  if (emit == 1 || w == 0) return;
   for (int i = 0; i < 3; ++i) {
     int a = 2 * i, neighbour = 2 * i + 1, b = (2 * i + 2) % 6;
     // Open, non-manifold and inconsistently wound edges have no neighbour (w = 0): every face
-    // on them casts its own side. Otherwise a side where the two faces' facings differ.
-    if (p[neighbour].w != 0.0 && facing(p[a], p[neighbour], p[b]) == f) continue;
-    // The side quad (a, a_far, b_far, b) of weight f, as a strip a, a_far, b, b_far.
-    if (emit == 0 && f < 0) { int t = a; a = b; b = t; }
-    int weight = emit == 0 ? 1 : f;
+    // on them casts its own side. Otherwise a side where the two faces' weights differ.
+    if (p[neighbour].w != 0.0 && face_weight(p[a], p[neighbour], p[b]) == w) continue;
+    // The side quad (a, a_far, b_far, b) of weight w, as a strip a, a_far, b, b_far.
+    if (emit == 0 && w < 0) { int t = a; a = b; b = t; }
+    int weight = emit == 0 ? 1 : w;
     emit_vertex(a, weight);
     emit_far(a, weight);
     emit_vertex(b, weight);
@@ -396,35 +413,35 @@ void main() {
   int face = gl_VertexID / 24, role = gl_VertexID % 24;
   vec4 p[6];
   for (int i = 0; i < 6; ++i) p[i] = points[adjacency[6 * face + i]];
-  int f = facing(p[0], p[2], p[4]);
+  int w = face_weight(p[0], p[2], p[4]), dark = dark_cap_weight(p[0], p[2], p[4], w);
   // Which vertex of the face this corner is (0, 2 or 4), whether extruded, its primitive's
   // weight, and whether the primitive is drawn at all.
   int vertex = 0, weight = 0;
-  bool far = false, drawn = f != 0 && (robust || f > 0);
+  bool far = false, drawn = false;
   if (role < 3) {  // the light cap, in the depth pass's vertex order
-    drawn = drawn && caps != 0 && (emit == 2 || (emit == 0 && f > 0) || (emit == 1 && f < 0));
+    drawn = w != 0 && caps != 0 && (emit == 2 || (emit == 0 && w > 0) || (emit == 1 && w < 0));
     vertex = 2 * role;
-    weight = f;
-  } else if (role < 6) {  // the dark cap, weight -f: reversed where a draw takes only +1
-    drawn = drawn && caps == 2 && emit != 1 &&
+    weight = w;
+  } else if (role < 6) {  // the dark cap: reversed where a draw takes only +1
+    drawn = dark != 0 && caps == 2 && emit != 1 &&
             (light.w != 0.0 || far_plane != vec4(0.0, 0.0, 0.0, -1.0));
-    bool reverse = emit == 0 && f > 0;
+    bool reverse = emit == 0 && dark < 0;
     int corner = role - 3;
     vertex = corner == 0 ? 0 : (corner == 1) == reverse ? 4 : 2;
     far = true;
-    weight = emit == 0 ? 1 : -f;
+    weight = emit == 0 ? 1 : dark;
   } else {  // the side of edge i: the strip a, a_far, b, b_far as triangles (a, a_far, b),
             // (b, a_far, b_far)
     int i = (role - 6) / 6, corner = (role - 6) % 6;
     int a = 2 * i, neighbour = 2 * i + 1, b = (2 * i + 2) % 6;
-    drawn = drawn && emit != 1 &&
-            (p[neighbour].w == 0.0 || facing(p[a], p[neighbour], p[b]) != f);
-    if (emit == 0 && f < 0) { int t = a; a = b; b = t; }
+    drawn = w != 0 && emit != 1 &&
+            (p[neighbour].w == 0.0 || face_weight(p[a], p[neighbour], p[b]) != w);
+    if (emit == 0 && w < 0) { int t = a; a = b; b = t; }
     const int strip[6] = int[6](0, 1, 2, 2, 1, 3);  // strip positions of the two triangles
     int s = strip[corner];
     vertex = s < 2 ? a : b;
     far = s == 1 || s == 3;
-    weight = emit == 0 ? 1 : f;
+    weight = emit == 0 ? 1 : w;
   }
   primitive_weight = weight;
   gl_Position = !drawn ? vec4(0.0) : to_clip(far ? extrude(p[vertex]) : p[vertex]);

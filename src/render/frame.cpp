@@ -1,9 +1,15 @@
 #include "render/frame.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <initializer_list>
+#include <limits>
 
 #include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 
 #include "core/names.h"
 #include "raster/raster.h"
@@ -129,11 +135,88 @@ Expected<void> check_light_view_size(int size) {
   return {};
 }
 
+namespace {
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+// A view the camera can be made into: finite, a direction to look in and an up that is not it.
+Expected<void> check_camera(const Camera& c) {
+  for (const glm::vec3& v : {c.position, c.target, c.up})
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(v[i])) return make_error("the camera has a coordinate that is not finite");
+  const glm::dvec3 forward = glm::dvec3(c.target) - glm::dvec3(c.position), up(c.up);
+  if (glm::length(forward) == 0.0)
+    return make_error("the camera's target is its position: it looks nowhere");
+  if (glm::length(up) == 0.0) return make_error("the camera's up is [0, 0, 0]: no direction");
+  if (glm::length(glm::cross(glm::normalize(forward), glm::normalize(up))) < 1e-6)
+    return make_error(
+        "the camera's up lies along its view direction, so it says nothing of "
+        "which way is up");
+  if (!(c.fov_y_degrees > 0.0f && c.fov_y_degrees < 180.0f))
+    return make_error("the camera's fov " + number(c.fov_y_degrees) +
+                      " degrees is outside (0, 180)");
+  if (!(c.near > 0.0f) || !std::isfinite(c.near))
+    return make_error("the camera's near distance " + number(c.near) + " is not positive");
+  return {};
+}
+
+// What every stage can draw exactly (float rasterizers, Embree's float rays), docs/verification.md
+// "The range drawn exactly": world coordinates within kMaxWorldCoordinate, and every object within
+// kMaxDepthRange near distances of the eye.
+Expected<void> check_extent(const Scene& scene) {
+  const glm::dvec3 eye(scene.camera.position);
+  for (const glm::vec3& p : {scene.camera.position, scene.camera.target})
+    if (glm::length(glm::dvec3(p)) > kMaxWorldCoordinate)
+      return make_error("the camera lies " + number(glm::length(glm::dvec3(p))) +
+                        " from the origin, beyond the " + number(kMaxWorldCoordinate) +
+                        " drawn exactly");
+  for (const SceneLight& light : scene.lights)
+    if (light.position.w != 0.0f && glm::length(glm::dvec3(light.position)) > kMaxWorldCoordinate)
+      return make_error("a light lies " + number(glm::length(glm::dvec3(light.position))) +
+                        " from the origin, beyond the " + number(kMaxWorldCoordinate) +
+                        " drawn exactly");
+  const double most = kMaxDepthRange * double(scene.camera.near);
+  for (const SceneObject& object : scene.objects) {
+    if (!object.mesh || object.mesh->positions.empty()) continue;
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+    for (const glm::vec3& p : object.mesh->positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    double origin = 0.0, from_eye = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::dvec3 q(glm::dmat4(object.transform) * glm::dvec4(corner & 1 ? hi.x : lo.x,
+                                                                   corner & 2 ? hi.y : lo.y,
+                                                                   corner & 4 ? hi.z : lo.z, 1.0));
+      origin = std::max(origin, glm::length(q));
+      from_eye = std::max(from_eye, glm::length(q - eye));
+    }
+    if (!std::isfinite(origin) || origin > kMaxWorldCoordinate)
+      return make_error("object '" + object.name + "' reaches " + number(origin) +
+                        " from the origin, beyond the " + number(kMaxWorldCoordinate) +
+                        " drawn exactly (Embree's rays and float vertices lose it)");
+    if (from_eye > most)
+      return make_error("object '" + object.name + "' reaches " + number(from_eye) +
+                        " from the eye, " + number(from_eye / scene.camera.near) +
+                        " times the camera's near distance (" + number(scene.camera.near) +
+                        "); shadows are exact within " + number(kMaxDepthRange) +
+                        " near distances: move the near plane out or make the object smaller");
+  }
+  return {};
+}
+
+}  // namespace
+
 Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
   if (auto ok = check_options(options); !ok) return ok;
   for (const SceneLight& light : scene.lights)
     if (auto ok = check_light(light.position); !ok)
       return make_error("scene " + scene.name + ": " + ok.error().message);
+  if (auto ok = check_camera(scene.camera); !ok)
+    return make_error("scene " + scene.name + ": " + ok.error().message);
+  if (auto ok = check_extent(scene); !ok)
+    return make_error("scene " + scene.name + ": " + ok.error().message);
   if (options.generator == Generator::standard && has_transparent_casters(scene))
     return make_error(
         "generator standard counts only the surfaces that face the light, but scene " + scene.name +

@@ -270,8 +270,17 @@ Expected<void> check_light_view_size(int size);
 // Checks an options struct a person filled in: size within the rasterizer's limits, the light
 // view's (check_light_view_size).
 Expected<void> check_options(const RenderOptions& options);
+// The range of a scene every stage draws exactly (docs/verification.md, "The range drawn exactly"):
+// world coordinates (the camera, point lights, every object's box) within kMaxWorldCoordinate of
+// the origin (beyond it Embree's float rays fail its own checks), and every object within
+// kMaxDepthRange times the camera's near distance of the eye (beyond it float vertices and depths
+// miss pixels of shadows on llvmpipe first, measured: a ground 2e5 times the near distance across).
+inline constexpr double kMaxWorldCoordinate = 1e11;
+inline constexpr double kMaxDepthRange = 2e6;
 // Checks a frame a person asked for: the options (check_options), every light of the scene
-// (check_light), and a generator that counts every surface of its transparent casters.
+// (check_light), a camera that makes a view (finite, a target apart from its position, an up
+// off the view direction, fov in (0, 180), near > 0), the scene within the range above, and a
+// generator that counts every surface of its transparent casters.
 Expected<void> check_frame(const Scene& scene, const RenderOptions& options);
 
 }  // namespace shadowvol

@@ -519,9 +519,10 @@ void SoftBackend::shade() {
                           const glm::vec3 a(model * glm::vec4(mesh.positions[v[0]], 1.0f));
                           const glm::vec3 b(model * glm::vec4(mesh.positions[v[1]], 1.0f));
                           const glm::vec3 c(model * glm::vec4(mesh.positions[v[2]], 1.0f));
-                          const glm::vec3 n = glm::cross(b - a, c - a);
-                          const float len = glm::length(n);
-                          normals[f] = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+                          // In double: the cross product of edges past ~1e9 overflows float.
+                          const glm::dvec3 n = glm::cross(glm::dvec3(b - a), glm::dvec3(c - a));
+                          const double len = glm::length(n);
+                          normals[f] = len > 0.0 ? glm::vec3(n / len) : glm::vec3(0, 1, 0);
                           if (smooth.corners.empty()) continue;
                           const glm::vec3 corners[3] = {a, b, c};
                           for (std::size_t k = 0; k < 3; ++k) {

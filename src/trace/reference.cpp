@@ -215,15 +215,20 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
         if (s.glass) out.transmitted[l] = glm::vec3(1.0f);
         continue;
       }
-      // Start a hair off the surface, towards the light's side, to leave its own triangle.
-      const double scale = std::max(1.0, glm::length(pos));
-      const glm::dvec3 origin = pos + n * (1e-5 * scale);
+      // Start a hair off the surface, towards the light's side, to leave its own triangle: a
+      // hair of its distance from the eye, far above float's steps there and, whatever the
+      // scene's scale, far below its features (DESIGN.md "Numerics").
+      const glm::dvec3 origin = pos + n * (1e-5 * glm::length(pos));
       RTCRay shadow{};
       shadow.org_x = float(origin.x), shadow.org_y = float(origin.y),
       shadow.org_z = float(origin.z);
       shadow.dir_x = float(d.x), shadow.dir_y = float(d.y), shadow.dir_z = float(d.z);
       shadow.tnear = 0.0f;
-      shadow.tfar = std::isinf(distance) ? std::numeric_limits<float>::infinity() : float(distance);
+      // Up to a hair short of a point light: a surface through the light itself (a lamp on a
+      // table) shadows only where rays cross it beyond the light (docs/volumes.md, "A light on a
+      // surface"); the hair is many float steps of the coordinates involved.
+      shadow.tfar = std::isinf(distance) ? std::numeric_limits<float>::infinity()
+                                         : float(distance - 1e-6 * (glm::length(pos) + distance));
       shadow.mask = 0xffffffffu;
       GlassContext context{{}, &s.transparent, &s.not_casting, {}};
       rtcInitIntersectContext(&context.context);

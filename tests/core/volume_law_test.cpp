@@ -197,11 +197,14 @@ void check_law(const testing::NamedMesh& named, const glm::vec4& light, Generato
   // sevenths (w = 7), off the integer planes of the meshes' faces, so few rays meet an edge.
   constexpr int kGrid = 7;
   std::uniform_int_distribution<int> near(-120 * kGrid, 120 * kGrid);
-  // Only faces that are not edge-on to the light (weight 0; under standard also the back faces):
-  // a point behind an edge-on face lies in its plane, a genuinely ambiguous sample.
+  // Only faces that face the light (robust: or turn away from it), never edge-on ones (which
+  // standard weighs 1): a point behind an edge-on face lies in its plane, a genuinely
+  // ambiguous sample.
+  std::vector<std::int8_t> facing(weights.size());
+  compute_face_weights(topo, light, Generator::robust, {0, topo.face_count()}, facing);
   std::vector<std::size_t> lit_faces;
   for (std::size_t f = 0; f < topo.face_count(); ++f)
-    if (weights[f] != 0) lit_faces.push_back(f);
+    if (weights[f] != 0 && facing[f] != 0) lit_faces.push_back(f);
   std::uniform_int_distribution<std::size_t> pick_face(
       0, std::max<std::size_t>(lit_faces.size(), 1) - 1);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);

@@ -111,6 +111,10 @@ TEST(GlBackend, SettingsAreParsedAndCheckedWithClearMessages) {
   ASSERT_FALSE(soft_vs.ok());
   EXPECT_EQ(soft_vs.error().message,
             "volumes built in a shader (--volumes vs) need the gl backend");
+  auto soft_stencil = make_renderer(Backend::soft, {VolumePath::cpu, CountTarget::stencil});
+  ASSERT_FALSE(soft_stencil.ok());  // never ignored in silence
+  EXPECT_EQ(soft_stencil.error().message,
+            "counting in a target of gl's (--counts stencil) needs the gl backend");
 }
 
 }  // namespace

@@ -465,3 +465,60 @@ TEST(Shading, RangeFalloffEndsAtTheRange) {
 
 }  // namespace
 }  // namespace shadowvol
+
+namespace shadowvol {
+namespace {
+
+// The scene k times larger: camera, near plane, point lights and objects alike.
+Scene scaled(Scene scene, float k) {
+  scene.camera.position *= k, scene.camera.target *= k, scene.camera.near *= k;
+  for (SceneLight& light : scene.lights)
+    if (light.position.w != 0.0f) light.position = glm::vec4(glm::vec3(light.position) * k, 1.0f);
+  for (SceneObject& object : scene.objects)
+    object.transform = glm::scale(glm::mat4(1.0f), glm::vec3(k)) * object.transform;
+  return scene;
+}
+
+// Shading is scale-free: faces a billion units across (whose float normals overflowed, leaving
+// them lit by the ambient light alone) shade as the same faces a unit across.
+TEST(Renderer, AHugeSceneShadesAsTheSameSceneAtUnitScale) {
+  const Scene unit = *builtin_scene("demo");
+  const Scene huge = scaled(unit, 1e9f);
+  ASSERT_TRUE(check_frame(huge, {96, 54}).ok()) << check_frame(huge, {96, 54}).error().message;
+  Renderer renderer = soft::soft_renderer();
+  const Frame a = renderer.render(unit, {96, 54}), b = renderer.render(huge, {96, 54});
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.image.rgba.size(); ++i)
+    differ += std::abs(int(a.image.rgba[i]) - int(b.image.rgba[i])) > 3;
+  EXPECT_LT(differ, a.image.rgba.size() / 100) << differ << " channels differ by more than 3";
+}
+
+// Beyond what float stages draw exactly, a frame is refused with the reason, never drawn wrong.
+TEST(CheckFrame, RefusesWhatCannotBeDrawnExactly) {
+  const Scene demo = *builtin_scene("demo");
+  auto message = [](const Scene& s) {
+    auto ok = check_frame(s, {96, 54});
+    return ok.ok() ? std::string("accepted") : ok.error().message;
+  };
+  Scene no_up = demo;
+  no_up.camera.up = glm::vec3(0.0f);
+  EXPECT_NE(message(no_up).find("the camera's up is [0, 0, 0]"), std::string::npos);
+  Scene up_along_view = demo;
+  up_along_view.camera.up = demo.camera.target - demo.camera.position;
+  EXPECT_NE(message(up_along_view).find("up lies along its view direction"), std::string::npos);
+  Scene far_out = demo;
+  far_out.objects[0].transform =
+      glm::translate(glm::mat4(1.0f), glm::vec3(2e12f, 0.0f, 0.0f)) * far_out.objects[0].transform;
+  EXPECT_NE(message(far_out).find("reaches 2e+12 from the origin, beyond the 1e+11"),
+            std::string::npos)
+      << message(far_out);
+  Scene wide_ground = demo;  // a ground 1e8 across seen from near 0.1
+  wide_ground.objects[0].transform =
+      glm::scale(glm::mat4(1.0f), glm::vec3(1e8f)) * wide_ground.objects[0].transform;
+  EXPECT_NE(message(wide_ground).find("near distances: move the near plane out"), std::string::npos)
+      << message(wide_ground);
+  EXPECT_EQ(message(scaled(demo, 1e-6f)), "accepted");  // the range is relative, not absolute
+}
+
+}  // namespace
+}  // namespace shadowvol

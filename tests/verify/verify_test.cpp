@@ -844,3 +844,55 @@ TEST(SmoothShading, ChangesTheLightNotTheShadows) {
 void PrintTo(Method m, std::ostream* os) { *os << to_string(m); }
 
 }  // namespace shadowvol
+
+namespace shadowvol {
+namespace {
+
+// A point light on a caster's surface (a lamp on a table): on a face, an edge, a vertex, on the
+// ground; the shadow is what lies beyond the caster along rays from the light, the faces through
+// the light casting nothing (docs/volumes.md, "A light on a surface"). Every generator, method
+// and backend agrees with the reference, which ends its rays a hair short of the light.
+TEST(LightOnASurface, ShadowsWhatLiesBeyondTheCaster) {
+  Scene scene;
+  scene.name = "light-on-a-surface";
+  scene.camera.position = {0.0f, 5.0f, 9.0f};
+  scene.camera.target = {0.0f, 0.5f, 0.0f};
+  scene.objects.push_back(
+      make_object("ground", make_ground(8.0f), glm::mat4(1.0f), glm::vec3(0.8f)));
+  scene.objects.push_back(make_object("box", make_box({-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f}),
+                                      glm::mat4(1.0f), glm::vec3(0.5f)));
+  // On the top face (within a triangle, on the diagonal), on side faces, edges and corners, and
+  // on the ground beside the box. On the +x face the half-space x < 0.5, the eye's, is in
+  // shadow: z-pass must fail there (docs/verification.md), so auto must not choose it.
+  const glm::vec3 on[] = {{0.2f, 1.0f, 0.3f},  {0.0f, 1.0f, 0.0f}, {0.5f, 0.5f, 0.0f},
+                          {0.0f, 0.5f, 0.5f},  {0.5f, 1.0f, 0.0f}, {0.5f, 1.0f, 0.5f},
+                          {-0.5f, 1.0f, 0.5f}, {0.5f, 0.0f, 0.5f}, {2.0f, 0.0f, 1.0f}};
+  for (const glm::vec3& light : on) {
+    scene.lights = {{glm::vec4(light, 1.0f)}};
+    const bool eye_in_shadow = light == glm::vec3(0.5f, 0.5f, 0.0f);
+    for (const Variant& v : kVariants)
+      for (Generator g : {Generator::automatic, Generator::robust})
+        for (Method m : {Method::zpass, Method::zfail, Method::automatic}) {
+          if (eye_in_shadow && m == Method::zpass) continue;
+          const Comparison c = verify(scene, m, g, v);
+          EXPECT_GT(c.pixels_compared, 1000u);
+          EXPECT_EQ(c.mismatched_outside_band, 0u)
+              << "light at " << light.x << " " << light.y << " " << light.z << ", " << v.name
+              << ", " << to_string(g) << ", " << to_string(m);
+        }
+  }
+  // Turned, so that the light, at a corner in world space, reaches the mesh's space through a
+  // rounded transform: within rounding of the corner, not on it.
+  const float turn = glm::radians(30.0f);
+  scene.objects[1].transform = glm::rotate(glm::mat4(1.0f), turn, {0.0f, 1.0f, 0.0f});
+  const glm::vec3 corner(glm::rotate(glm::mat4(1.0f), turn, {0.0f, 1.0f, 0.0f}) *
+                         glm::vec4(0.5f, 1.0f, 0.5f, 1.0f));
+  scene.lights = {{glm::vec4(corner, 1.0f)}};
+  for (const Variant& v : kVariants)
+    for (Method m : {Method::zpass, Method::zfail, Method::automatic})
+      EXPECT_EQ(verify(scene, m, Generator::automatic, v).mismatched_outside_band, 0u)
+          << "turned box, " << v.name << ", " << to_string(m);
+}
+
+}  // namespace
+}  // namespace shadowvol
