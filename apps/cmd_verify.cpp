@@ -27,6 +27,7 @@ int run(const VerifyArgs& args) {
   if (!resolved) return fail(resolved.error().message, kVerifyError);
   RenderOptions options = resolved->options;
   options.count_fill = args.json;        // the JSON carries the volumes' fill
+  options.record_facing = true;          // compared too: a shading input no mask shows
   const Scene& scene = resolved->scene;  // at --frame
   if (auto ok = check_outputs({args.diff}, {args.frame.scene}); !ok)
     return fail(ok.error().message, kVerifyError);

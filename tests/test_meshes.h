@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "core/mesh.h"
 #include "core/shapes.h"
 #include "scene/scene.h"
@@ -25,6 +27,16 @@ inline std::vector<std::string> builtin_scenes_at_test_size() {
   for (const std::string_view name : builtin_scene_names())
     names.push_back(name.starts_with("city") ? std::string(name) + ":48" : std::string(name));
   return names;
+}
+
+// The scene k times larger: camera, near plane, point lights and objects alike.
+inline Scene scaled(Scene scene, float k) {
+  scene.camera.position *= k, scene.camera.target *= k, scene.camera.near *= k;
+  for (SceneLight& light : scene.lights)
+    if (light.position.w != 0.0f) light.position = glm::vec4(glm::vec3(light.position) * k, 1.0f);
+  for (SceneObject& object : scene.objects)
+    object.transform = glm::scale(glm::mat4(1.0f), glm::vec3(k)) * object.transform;
+  return scene;
 }
 
 inline void add_triangle(Mesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c) {

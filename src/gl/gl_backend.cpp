@@ -234,17 +234,27 @@ void GlBackend::VolumeUpload::upload(const VolumeBuffer& volume, const VolumePla
   }
 }
 
+// The draw buffers of a framebuffer with the ids at attachment 0 and the colour at 1.
+namespace {
+const GLenum kBoth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+const GLenum kIdsOnly[] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+const GLenum kColourOnly[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+const GLenum kNone[] = {GL_NONE, GL_NONE};
+}  // namespace
+
 // The frame's render targets, remade when the size changes.
 struct GlBackend::Targets {
   int width = 0, height = 0;
   Object ids = make_texture(GL_TEXTURE_2D), color = make_texture(GL_TEXTURE_2D),
          depth_stencil = make_texture(GL_TEXTURE_2D), counts = make_texture(GL_TEXTURE_2D),
-         log_light = make_texture(GL_TEXTURE_2D), out = make_texture(GL_TEXTURE_2D);
+         log_light = make_texture(GL_TEXTURE_2D), out = make_texture(GL_TEXTURE_2D),
+         faces = make_texture(GL_TEXTURE_2D);
   // scene: ids, colour, depth-stencil; count: the additive count target and the same
   // depth-stencil; light: the log light map of transparent casters (RGBA32F) and the same
-  // depth-stencil; resolved: the sRGB frame.
+  // depth-stencil; resolved: the sRGB frame; facing: which surfaces face a light
+  // (RenderOptions::record_facing), as the lit pass's colour, without depth.
   Object scene = make_framebuffer(), count = make_framebuffer(), light = make_framebuffer(),
-         resolved = make_framebuffer();
+         resolved = make_framebuffer(), facing = make_framebuffer();
 
   Targets(int w, int h) : width(w), height(h) {
     glTextureStorage2D(ids.get(), 1, GL_R32UI, w, h);
@@ -253,6 +263,7 @@ struct GlBackend::Targets {
     glTextureStorage2D(counts.get(), 1, GL_R32F, w, h);
     glTextureStorage2D(log_light.get(), 1, GL_RGBA32F, w, h);
     glTextureStorage2D(out.get(), 1, GL_RGBA8, w, h);
+    glTextureStorage2D(faces.get(), 1, GL_R8, w, h);
     // Read with texelFetch only; nearest filtering also keeps the integer texture complete.
     for (const Object* texture : {&ids, &color, &counts, &log_light, &out}) {
       glTextureParameteri(texture->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -266,9 +277,11 @@ struct GlBackend::Targets {
     glNamedFramebufferTexture(light.get(), GL_COLOR_ATTACHMENT0, log_light.get(), 0);
     glNamedFramebufferTexture(light.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil.get(), 0);
     glNamedFramebufferTexture(resolved.get(), GL_COLOR_ATTACHMENT0, out.get(), 0);
+    glNamedFramebufferTexture(facing.get(), GL_COLOR_ATTACHMENT1, faces.get(), 0);
+    glNamedFramebufferDrawBuffers(facing.get(), 2, kColourOnly);
   }
   bool complete() const {
-    for (const Object* fbo : {&scene, &count, &light, &resolved})
+    for (const Object* fbo : {&scene, &count, &light, &resolved, &facing})
       if (glCheckNamedFramebufferStatus(fbo->get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return false;
     return true;
@@ -643,13 +656,6 @@ void GlBackend::begin_frame(const FrameInputs& inputs) {
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
-
-namespace {
-const GLenum kBoth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-const GLenum kIdsOnly[] = {GL_COLOR_ATTACHMENT0, GL_NONE};
-const GLenum kColourOnly[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
-const GLenum kNone[] = {GL_NONE, GL_NONE};
-}  // namespace
 
 // The opaque layer: the background, then face ids and the ambient term. The glass layer: the
 // nearest transparent surface in front of the opaque one (ids), then its ambient term where it
@@ -1309,6 +1315,32 @@ void GlBackend::read_light_map(std::size_t l, SurfaceLayer& layer) {
             [](const glm::vec4& c) { return glm::exp(glm::vec3(c)); });
   for (std::size_t p = 0; p < pixels; ++p)
     if (layer.shadowed[l][p]) layer.transmitted[l][p] = glm::vec3(0.0f);
+}
+
+void GlBackend::read_facing(std::size_t l, Layer layer, SurfaceLayer& out) {
+  Targets& t = *targets_;
+  const int w = in_->options.width, h = in_->options.height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  const float zero[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(t.facing.get(), GL_COLOR, 1, zero);
+  glBindFramebuffer(GL_FRAMEBUFFER, t.facing.get());
+  glBindTextureUnit(2, t.ids.get());
+  glUseProgram(surface_lit_[gs_ ? 1 : 0].get());
+  glUniform1i(glsl::kFacingOnly, GL_TRUE);
+  glUniform4fv(glsl::kLight, 1, glm::value_ptr(in_->plan.lights[l]));
+  const SceneLight& light = in_->scene.lights[l];
+  const shading::Falloff falloff = shading::falloff_of(light.range, light.limited());
+  glUniform2f(glsl::kFalloff, falloff.inv_range2, falloff.inverse_square);
+  scissor(l);  // as the lit pass: no surface beyond it is within the range
+  draw_surfaces(drawn_[static_cast<int>(layer)], [&](std::size_t o) { bind_surface(o); });
+  glDisable(GL_SCISSOR_TEST);
+  glUniform1i(glsl::kFacingOnly, GL_FALSE);
+  std::vector<std::uint8_t>& faces = read_stencil_;
+  faces.resize(pixels);
+  glNamedFramebufferReadBuffer(t.facing.get(), GL_COLOR_ATTACHMENT1);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.facing.get());
+  glReadnPixels(0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels), faces.data());
+  flip_rows(faces, w, h, out.faces_light[l], [](std::uint8_t c) -> std::uint8_t { return c != 0; });
 }
 
 // The layer's surfaces again, at equal depth, added where the count is 0.

@@ -105,6 +105,8 @@ class GlBackend final : public FrameBackend {
   void read_mask(std::size_t light, SurfaceLayer& layer) override;
   void read_light_map(std::size_t light, SurfaceLayer& layer) override;
   void light_pass(std::size_t light, Layer layer) override;
+  // The lit program again, into a target of its own, with only its test of the face's side.
+  void read_facing(std::size_t light, Layer layer, SurfaceLayer& out) override;
   void see_through() override;
   void shade() override;
   void read_image(Image& image) override;

@@ -22,7 +22,7 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
                      kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
                      kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25,
-                     kSmoothNormals = 26, kTextured = 27, kAmbientOnly = 28;
+                     kSmoothNormals = 26, kTextured = 27, kAmbientOnly = 28, kFacingOnly = 29;
 
 // Shader storage bindings of the lit pass.
 inline constexpr int kFaceNormalsBinding = 0, kPositionsBinding = 1, kIndicesBinding = 2,
@@ -164,6 +164,8 @@ layout(location = 27) uniform bool textured;
 layout(binding = 3) uniform sampler2D base_color_map;
 // The ambient term of a textured surface (its depth pass wrote none): radiance * albedo here.
 layout(location = 28) uniform bool ambient_only;
+// Only whether the face faces the light (RenderOptions::record_facing): 1 where it does.
+layout(location = 29) uniform bool facing_only;
 layout(location = 1) uniform mat4 model;  // eye-relative
 layout(location = 2) uniform mat3 normal_matrix;
 layout(location = 8) uniform vec3 albedo;
@@ -210,11 +212,25 @@ void main() {
     color = vec4(radiance * surface_albedo, 0.0);
     return;
   }
-  if (count_texture && texelFetch(counts, ivec2(gl_FragCoord.xy), 0).r != 0.0) discard;
-  vec3 arriving = light_map ? exp(texelFetch(log_light, ivec2(gl_FragCoord.xy), 0).rgb) : vec3(1.0);
   vec3 face = normal_matrix * normals[gl_PrimitiveID].xyz;
   face = length(face) > 0.0 ? normalize(face) : vec3(0.0, 1.0, 0.0);
   vec3 to_eye = normalize(-eye_position);  // the eye is the origin
+  bool back = dot(face, to_eye) < 0.0;  // two-sided: light the side we see, as the face shows
+  if (back) face = -face;
+  vec3 towards = light.w != 0.0 ? light.xyz / light.w - eye_position : light.xyz;
+  float d2 = dot(towards, towards);
+  float x = d2 * falloff.x;
+  // The face, not the normal shaded with, decides the side of the light the surface is on
+  // (render/shading.h).
+  bool faces = dot(face, towards) > 0.0 && x * x < 1.0;
+  if (facing_only) {
+    if (!faces) discard;
+    color = vec4(1.0);
+    return;
+  }
+  if (!faces) discard;
+  if (count_texture && texelFetch(counts, ivec2(gl_FragCoord.xy), 0).r != 0.0) discard;
+  vec3 arriving = light_map ? exp(texelFetch(log_light, ivec2(gl_FragCoord.xy), 0).rgb) : vec3(1.0);
   vec3 n = face;
   float offset = 0.0;
   if (smooth_normals && inside) {
@@ -223,14 +239,11 @@ void main() {
     vec3 mixed = normal_matrix * (w.x * a.xyz + w.y * b.xyz + w.z * d.xyz);
     if (length(mixed) > 0.0) {
       n = normalize(mixed);
+      if (back) n = -n;
       offset = dot(w, vec3(a.w, b.w, d.w));
     }
   }
-  if (dot(face, to_eye) < 0.0) n = -n;  // two-sided: light the side we see, as the face shows
-  vec3 towards = light.w != 0.0 ? light.xyz / light.w - eye_position : light.xyz;
-  float d2 = dot(towards, towards);
-  float x = d2 * falloff.x;
-  float window = x * x < 1.0 ? 1.0 - x * x : 0.0;
+  float window = 1.0 - x * x;
   float reaching = window * window / (1.0 + d2 * falloff.y);
   vec3 to_light = normalize(towards);
   float lambert = (dot(n, to_light) - offset) / (1.0 - offset);
@@ -287,49 +300,49 @@ void main() {
 
 // What the volume shaders share (geometry and vertex): the volume's uniforms, a face's facing
 // and the extrusion onto the far plane, so that both paths decide alike.
-#define SHADOWVOL_GLSL_VOLUME                                                                    \
-  "layout(location = 4) uniform vec4 light;  // object space\n"                                  \
+#define SHADOWVOL_GLSL_VOLUME                                                                      \
+  "layout(location = 4) uniform vec4 light;  // object space\n"                                    \
   "layout(location = 5) uniform bool robust;  // false: standard, light-facing faces\n"            \
-  "layout(location = 6) uniform int caps;     // kCapsNone, kCapsLight, kCapsAll\n"              \
-  "layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted\n"  \
-  "layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity\n" \
-  "flat out int primitive_weight;\n"                                                             \
-  "invariant gl_Position;\n"                                                                     \
-  "\n"                                                                                           \
-  "int facing(vec4 a, vec4 b, vec4 c) {\n"                                                       \
-  "  precise vec3 na = cross(b.xyz - a.xyz, c.xyz - a.xyz);\n"                                   \
-  "  precise vec3 nb = cross(c.xyz - b.xyz, a.xyz - b.xyz);\n"                                   \
-  "  precise vec3 nc = cross(a.xyz - c.xyz, b.xyz - c.xyz);\n"                                   \
-  "  precise float da = dot(na, light.xyz - light.w * a.xyz);\n"                                 \
-  "  precise float db = dot(nb, light.xyz - light.w * b.xyz);\n"                                 \
-  "  precise float dc = dot(nc, light.xyz - light.w * c.xyz);\n"                                 \
-  "  if (da > 0.0 || db > 0.0 || dc > 0.0) return 1;\n"                                          \
-  "  if (da < 0.0 || db < 0.0 || dc < 0.0) return -1;\n"                                         \
-  "  return 0;\n"                                                                                \
-  "}\n"                                                                                          \
-  "\n"                                                                                           \
+  "layout(location = 6) uniform int caps;     // kCapsNone, kCapsLight, kCapsAll\n"                \
+  "layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted\n"    \
+  "layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity\n"   \
+  "flat out int primitive_weight;\n"                                                               \
+  "invariant gl_Position;\n"                                                                       \
+  "\n"                                                                                             \
+  "int facing(vec4 a, vec4 b, vec4 c) {\n"                                                         \
+  "  precise vec3 na = cross(b.xyz - a.xyz, c.xyz - a.xyz);\n"                                     \
+  "  precise vec3 nb = cross(c.xyz - b.xyz, a.xyz - b.xyz);\n"                                     \
+  "  precise vec3 nc = cross(a.xyz - c.xyz, b.xyz - c.xyz);\n"                                     \
+  "  precise float da = dot(na, light.xyz - light.w * a.xyz);\n"                                   \
+  "  precise float db = dot(nb, light.xyz - light.w * b.xyz);\n"                                   \
+  "  precise float dc = dot(nc, light.xyz - light.w * c.xyz);\n"                                   \
+  "  if (da > 0.0 || db > 0.0 || dc > 0.0) return 1;\n"                                            \
+  "  if (da < 0.0 || db < 0.0 || dc < 0.0) return -1;\n"                                           \
+  "  return 0;\n"                                                                                  \
+  "}\n"                                                                                            \
+  "\n"                                                                                             \
   "// Its weight (core/volume.cpp, compute_face_weights): robust, the facing; standard, 1 where\n" \
-  "// it faces the light or is edge-on to it (a light on its plane) and has an area, else 0.\n"   \
-  "int face_weight(vec4 a, vec4 b, vec4 c) {\n"                                                   \
-  "  int f = facing(a, b, c);\n"                                                                  \
-  "  if (robust || f != 0) return robust ? f : max(f, 0);\n"                                     \
-  "  precise vec3 n = cross(b.xyz - a.xyz, c.xyz - a.xyz);\n"                                     \
-  "  return n != vec3(0.0) ? 1 : 0;\n"                                                           \
-  "}\n"                                                                                          \
-  "\n"                                                                                           \
+  "// it faces the light or is edge-on to it (a light on its plane) and has an area, else 0.\n"    \
+  "int face_weight(vec4 a, vec4 b, vec4 c) {\n"                                                    \
+  "  int f = facing(a, b, c);\n"                                                                   \
+  "  if (robust || f != 0) return robust ? f : max(f, 0);\n"                                       \
+  "  precise vec3 n = cross(b.xyz - a.xyz, c.xyz - a.xyz);\n"                                      \
+  "  return n != vec3(0.0) ? 1 : 0;\n"                                                             \
+  "}\n"                                                                                            \
+  "\n"                                                                                             \
   "// The weight of its dark cap: robust, -weight; standard, 1 for a face that faces away from\n"  \
-  "// the light (in its own vertex order), else none: the front faces' caps would vanish where\n" \
+  "// the light (in its own vertex order), else none: the front faces' caps would vanish where\n"  \
   "// they are edge-on to it (core/volume.cpp, cap_weights).\n"                                    \
-  "int dark_cap_weight(vec4 a, vec4 b, vec4 c, int weight) {\n"                                  \
-  "  return robust ? -weight : (facing(a, b, c) < 0 ? 1 : 0);\n"                                 \
-  "}\n"                                                                                          \
-  "\n"                                                                                           \
-  "// Where the ray from p away from the light meets the far plane (core/volume.h, extrude).\n"  \
-  "vec4 extrude(vec4 p) {\n"                                                                     \
-  "  vec3 r = light.w * p.xyz - light.xyz;\n"                                                    \
-  "  float along = dot(far_plane.xyz, r), before = dot(far_plane.xyz, p.xyz) + far_plane.w;\n"   \
-  "  return vec4(along * p.xyz - before * r, along);\n"                                          \
-  "}\n"                                                                                          \
+  "int dark_cap_weight(vec4 a, vec4 b, vec4 c, int weight) {\n"                                    \
+  "  return robust ? -weight : (facing(a, b, c) < 0 ? 1 : 0);\n"                                   \
+  "}\n"                                                                                            \
+  "\n"                                                                                             \
+  "// Where the ray from p away from the light meets the far plane (core/volume.h, extrude).\n"    \
+  "vec4 extrude(vec4 p) {\n"                                                                       \
+  "  vec3 r = light.w * p.xyz - light.xyz;\n"                                                      \
+  "  float along = dot(far_plane.xyz, r), before = dot(far_plane.xyz, p.xyz) + far_plane.w;\n"     \
+  "  return vec4(along * p.xyz - before * r, along);\n"                                            \
+  "}\n"                                                                                            \
   "\n"
 
 // GPU Gems 3 listing 11-1, in the mesh's own space, for the standard and robust generators.

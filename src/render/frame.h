@@ -145,6 +145,11 @@ struct RenderOptions {
   // With tile_work: also each object's volume's share, into Frame::object_tile_work (for the
   // suite's per-tile oracle, `bench --suite spsv`).
   bool tile_work_per_object = false;
+  // Records per light which surfaces the lit pass takes as facing the light (SurfaceLayer::
+  // faces_light), so that verify can compare a shading input no mask shows: a face whose normal
+  // is lost lights nothing, whether in shadow or not. On the gl backend, a pass per light and
+  // layer of its own, apart from the frame's times (in ms_readback).
+  bool record_facing = false;
 };
 
 struct Image {
@@ -245,6 +250,12 @@ struct SurfaceLayer {
   // light (linear RGB, per channel) that reaches the surface, the product of the transmittances
   // of the transparent surfaces between them (Kim, Kim & Turk 2008 §2); 0 where shadowed.
   std::vector<std::vector<glm::vec3>> transmitted;
+  // RenderOptions::record_facing only, else empty: per light, per pixel, 1 where the lit pass
+  // takes the surface as facing the light: its face's normal, turned to the side the eye sees,
+  // points to the light's side, and the surface lies within the light's range. The light's
+  // direct term applies only there (and where the mask is clear); the reference's faces_light
+  // says the same.
+  std::vector<std::vector<std::uint8_t>> faces_light;
 };
 
 // What a frame leaves behind besides the picture: what each pixel shows, and per light whether

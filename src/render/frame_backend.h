@@ -112,6 +112,10 @@ class FrameBackend {
   // The light's contribution to the layer's surfaces where its mask is clear, times what the
   // light map lets through.
   virtual void light_pass(std::size_t light, Layer layer) = 0;
+  // RenderOptions::record_facing: which of the layer's surfaces the lit pass takes as facing the
+  // light (SurfaceLayer::faces_light), into layer.faces_light[light], zeroed before, by the end of
+  // the frame.
+  virtual void read_facing(std::size_t light, Layer layer, SurfaceLayer& out) = 0;
 
   // With transparent casters: the log transmittance of the transparent surfaces in front of the
   // opaque layer, each counted once, which filters what the eye sees behind them.

@@ -24,21 +24,25 @@ void reset(FrameStats& stats) {
   stats.culled_lights = std::move(culled_lights);
 }
 
-// Sizes the layer's per-light masks (and light, with transparent casters) in place: a copy
-// would touch every page twice, and a frame of the same size allocates nothing.
-void size_layer(SurfaceLayer& layer, std::size_t lights, std::size_t pixels, bool glass) {
+// Sizes the layer's per-light masks (and light, with transparent casters; and which surfaces
+// face each light, where recorded) in place: a copy would touch every page twice, and a frame of
+// the same size allocates nothing.
+void size_layer(SurfaceLayer& layer, std::size_t lights, std::size_t pixels, bool glass,
+                bool facing) {
   layer.shadowed.resize(lights);
   for (std::vector<std::uint8_t>& mask : layer.shadowed) mask.resize(pixels);
   layer.transmitted.resize(glass ? lights : 0);
   for (std::vector<glm::vec3>& light : layer.transmitted) light.resize(pixels);
+  layer.faces_light.resize(facing ? lights : 0);
+  for (std::vector<std::uint8_t>& faces : layer.faces_light) faces.assign(pixels, 0);
 }
 
 // Sizes a frame's per-pixel buffers side by side: at a new size each page's first touch is a
 // page fault, which the cores then take at once rather than one after another in the passes.
-void size_frame(Frame& frame, std::size_t lights, std::size_t pixels, bool glass) {
+void size_frame(Frame& frame, std::size_t lights, std::size_t pixels, bool glass, bool facing) {
   tbb::parallel_invoke([&] { frame.object.resize(pixels); }, [&] { frame.face.resize(pixels); },
                        [&] { frame.image.rgba.resize(4 * pixels); },
-                       [&] { size_layer(frame, lights, pixels, glass); });
+                       [&] { size_layer(frame, lights, pixels, glass, facing); });
 }
 
 // An object that does not receive shadows (SceneObject::receives_shadows) gets every light
@@ -144,7 +148,8 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
   if (clamps_continuous(options.clamp) && !costs_.measured())
     costs_ = backend_->measure_volume_costs();
   stats.volume_costs = costs_;
-  if (read_back && frame.object.size() != pixels) size_frame(frame, lights, pixels, glass);
+  if (read_back && frame.object.size() != pixels)
+    size_frame(frame, lights, pixels, glass, options.record_facing);
   backend_->begin_frame(in);
   // The scene BVH made current for this frame's boxes, where occlusion culling walks it.
   if (options.occlusion != Occlusion::none) occlusion_.begin_frame(plan_, stats);
@@ -174,7 +179,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
     const bool ids = opaque && CcShadowVolumes::needs_ids(options);
     if (read_back || ids) {
       timed(*backend_, stats.ms_readback, [&] { backend_->read_ids(layer, out); });
-      size_layer(out, lights, pixels, glass);
+      size_layer(out, lights, pixels, glass, read_back && options.record_facing);
     }
     if (opaque && (options.cull != Cull::none || options.clamp != Clamp::none)) {
       backend_->finish();
@@ -199,6 +204,7 @@ void Renderer::draw(const Scene& scene, const RenderOptions& options, Frame& fra
     frame.glass.face.clear();
     frame.glass.shadowed.clear();
     frame.glass.transmitted.clear();
+    frame.glass.faces_light.clear();
   }
   // A frame without count passes still joins.
   if (!builds.joined) timed(*backend_, stats.ms_volumes, [&] { builds.join(stats); });
@@ -263,6 +269,8 @@ void Renderer::light_layer(const FrameInputs& in, std::size_t l, Layer layer, Su
   }
   if (clear && plan_.has_glass()) clear_non_receivers(plan_, l, out);
   timed(*backend_, stats.ms_shade, [&] { backend_->light_pass(l, layer); });
+  if (read_back && in.options.record_facing)
+    timed(*backend_, stats.ms_readback, [&] { backend_->read_facing(l, layer, out); });
 }
 
 }  // namespace shadowvol

@@ -1,6 +1,8 @@
 // shadowvol render: the shading both backends use (the OpenGL backend passes these to its
 // shaders as uniforms): ambient * albedo, plus per unshadowed light Lambert + Blinn-Phong, lit on
-// the side the eye sees; a vertical gradient behind everything; sRGB out.
+// the side the eye sees, and only where that side of the face faces the light within its range
+// (a face turned from a light lies in its own shadow, whatever its smooth normals say); a
+// vertical gradient behind everything; sRGB out.
 #pragma once
 
 #include <algorithm>
@@ -41,10 +43,15 @@ struct Falloff {
 inline Falloff falloff_of(float range, bool limited) {
   return limited ? Falloff{1.0f / (range * range), 1.0f} : Falloff{};
 }
+// Whether squared distance d2 lies within the range (always, without one).
+inline bool within_range(float d2, const Falloff& f) {
+  const float x = d2 * f.inv_range2;
+  return x * x < 1.0f;
+}
 // The falloff at squared distance d2.
 inline float falloff(float d2, const Falloff& f) {
   const float x = d2 * f.inv_range2;
-  const float window = x * x < 1.0f ? 1.0f - x * x : 0.0f;
+  const float window = within_range(d2, f) ? 1.0f - x * x : 0.0f;
   return window * window / (1.0f + d2 * f.inverse_square);
 }
 

@@ -577,22 +577,25 @@ struct RowPoints {
 
 // Adds one light to a row's colours (r, g, b: the ambient term at first): Lambert (less the
 // terminator offset of smooth shading: render/shading.h) + Blinn-Phong where the light reaches
-// the surface, on the side the eye sees. Arrays of the row's pixels,
-// distinct (restrict: GCC honours it on parameters), so that the loop vectorizes across pixels.
+// the surface and the side of its face the eye sees faces the light (into faces_light, per
+// pixel). Arrays of the row's pixels, distinct (restrict: GCC honours it on parameters), so
+// that the loop vectorizes across pixels.
 template <bool kThroughGlass>
 void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, shading::Falloff falloff,
                const float* __restrict z, const float* __restrict nx, const float* __restrict ny,
-               const float* __restrict nz, const float* __restrict offset,
+               const float* __restrict nz, const float* __restrict fx, const float* __restrict fy,
+               const float* __restrict fz, const float* __restrict offset,
                const float* __restrict ar, const float* __restrict ag, const float* __restrict ab,
                const std::uint8_t* __restrict shadowed, const glm::vec3* __restrict arriving,
-               float* __restrict r, float* __restrict g, float* __restrict b) {
+               float* __restrict r, float* __restrict g, float* __restrict b,
+               std::uint8_t* __restrict faces_light) {
   for (int x = 0; x < n; ++x) {
-    const float fx = float(x);
+    const float column = float(x);
     // The point (float: it only aims the light) and the unit vector to the eye, the origin.
-    const float inv_w = 1.0f / (row.base.w + row.step.w * fx + row.along_z.w * z[x]);
-    const float px = (row.base.x + row.step.x * fx + row.along_z.x * z[x]) * inv_w;
-    const float py = (row.base.y + row.step.y * fx + row.along_z.y * z[x]) * inv_w;
-    const float pz = (row.base.z + row.step.z * fx + row.along_z.z * z[x]) * inv_w;
+    const float inv_w = 1.0f / (row.base.w + row.step.w * column + row.along_z.w * z[x]);
+    const float px = (row.base.x + row.step.x * column + row.along_z.x * z[x]) * inv_w;
+    const float py = (row.base.y + row.step.y * column + row.along_z.y * z[x]) * inv_w;
+    const float pz = (row.base.z + row.step.z * column + row.along_z.z * z[x]) * inv_w;
     const float to_eye = -1.0f / std::sqrt(px * px + py * py + pz * pz);
     const float ex = px * to_eye, ey = py * to_eye, ez = pz * to_eye;
     const float sx = nx[x], sy = ny[x], sz = nz[x];  // on the eye's side already (shade_row)
@@ -600,6 +603,10 @@ void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, shadin
           lz = light_at.z - pz * light_at.w;
     const float d2 = lx * lx + ly * ly + lz * lz;
     const float reaching = shading::falloff(d2, falloff);
+    // The face, not the normal shaded with, decides the side of the light the surface is on.
+    const bool faces =
+        (fx[x] * lx + fy[x] * ly + fz[x] * lz > 0.0f) & shading::within_range(d2, falloff);
+    faces_light[x] = faces;
     const float inv = 1.0f / std::sqrt(d2);
     lx *= inv, ly *= inv, lz *= inv;
     const float lambert = shading::smooth_lambert(sx * lx + sy * ly + sz * lz, offset[x]);
@@ -607,7 +614,7 @@ void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, shadin
     const float cos_half = (sx * hx + sy * hy + sz * hz) / std::sqrt(hx * hx + hy * hy + hz * hz);
     const float spec =
         shading::kSpecular * shading::specular_power(cos_half > 0.0f ? cos_half : 0.0f);
-    const bool lit = (shadowed[x] == 0) & (lambert > 0.0f);
+    const bool lit = (shadowed[x] == 0) & faces & (lambert > 0.0f);
     float dr = reaching * light.x * (ar[x] * lambert + spec),
           dg = reaching * light.y * (ag[x] * lambert + spec),
           db = reaching * light.z * (ab[x] * lambert + spec);
@@ -621,7 +628,7 @@ void add_light(int n, RowPoints row, glm::vec4 light_at, glm::vec3 light, shadin
 // One row of a layer lit, in structure-of-arrays form: the per-pixel gathers (normal, albedo,
 // depth) first, then per light a loop over the row's pixels that vectorizes (add_light).
 void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
-                            std::span<const glm::vec4> lights_at, const SurfaceLayer& layer,
+                            std::span<const glm::vec4> lights_at, SurfaceLayer& layer,
                             std::span<const float> depth, int y, ShadeRow& out) const {
   const int w = in_->options.width, h = in_->options.height;
   const std::size_t row = static_cast<std::size_t>(y) * w;
@@ -636,14 +643,14 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
         seen ? &scene.objects[static_cast<std::size_t>(o)].material : nullptr;
     glm::vec3 albedo = seen ? material->color : glm::vec3(0.0f);
     out.z[x] = seen ? depth[row + x] : 1.0f;  // the near plane: a finite point where none is
-    glm::vec3 normal(0.0f);
+    glm::vec3 normal(0.0f), face(0.0f);
     float offset = 0.0f;
     if (seen) {
       // The normal on the side the eye sees: the face's, or the corners' interpolated at the
       // pixel's point, turned to the side the face shows (two-sided, as the face decides); the
       // albedo, times the texture there.
       const std::size_t f = layer.face[row + x];
-      const glm::vec3 face = normals_[static_cast<std::size_t>(o)][f];
+      face = normals_[static_cast<std::size_t>(o)][f];
       const glm::vec4 h_point = points.base + points.step * float(x) + points.along_z * out.z[x];
       const glm::vec3 point = glm::vec3(h_point) / h_point.w;
       const bool back = glm::dot(face, point) > 0.0f;  // the eye, the origin, behind the face
@@ -662,9 +669,10 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
                                             w.x * uv[0] + w.y * uv[1] + w.z * uv[2]);
         }
       }
-      if (back) normal = -normal;
+      if (back) normal = -normal, face = -face;
     }
     out.nx[x] = normal.x, out.ny[x] = normal.y, out.nz[x] = normal.z, out.offset[x] = offset;
+    out.fx[x] = face.x, out.fy[x] = face.y, out.fz[x] = face.z;
     out.ar[x] = albedo.x, out.ag[x] = albedo.y, out.ab[x] = albedo.z;
     out.r[x] = ambient.x * albedo.x, out.g[x] = ambient.y * albedo.y,
     out.b[x] = ambient.z * albedo.z;
@@ -683,10 +691,13 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
     (arriving ? add_light<true>
               : add_light<false>)(rect.x1 - rect.x0, from_x0, lights_at[l], light, falloff,
                                   out.z.data() + x0, out.nx.data() + x0, out.ny.data() + x0,
-                                  out.nz.data() + x0, out.offset.data() + x0, out.ar.data() + x0,
+                                  out.nz.data() + x0, out.fx.data() + x0, out.fy.data() + x0,
+                                  out.fz.data() + x0, out.offset.data() + x0, out.ar.data() + x0,
                                   out.ag.data() + x0, out.ab.data() + x0, &layer.shadowed[l][at],
-                                  arriving, out.r.data() + x0, out.g.data() + x0,
-                                  out.b.data() + x0);
+                                  arriving, out.r.data() + x0, out.g.data() + x0, out.b.data() + x0,
+                                  out.faces.data());
+    if (!layer.faces_light.empty())
+      std::copy_n(out.faces.data(), rect.x1 - rect.x0, &layer.faces_light[l][at]);
   }
 }
 

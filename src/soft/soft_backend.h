@@ -61,7 +61,8 @@ class SoftBackend final : public FrameBackend {
   void read_mask(std::size_t light, SurfaceLayer& layer) override;
   void read_light_map(std::size_t light, SurfaceLayer& layer) override;
   void end_counts() override;
-  void light_pass(std::size_t, Layer) override {}  // in shade
+  void light_pass(std::size_t, Layer) override {}                  // in shade
+  void read_facing(std::size_t, Layer, SurfaceLayer&) override {}  // shade records it
   void see_through() override;
   void shade() override;
   void read_image(Image&) override {}  // shade writes it
@@ -129,22 +130,36 @@ class SoftBackend final : public FrameBackend {
     const glm::vec2* uvs = nullptr;           // the object's, per corner (a texture)
   };
   std::vector<FaceCorners> face_corners_;
-  // One row of pixels being shaded, an array per component (shade_row).
+  // One row of pixels being shaded, an array per component (shade_row), all in one block: a
+  // thread that shades for the first time allocates once per row, not once per component.
   struct ShadeRow {
-    std::vector<float> nx, ny, nz, offset, ar, ag, ab, z, r, g, b;
+    // The normal shaded with and the face's own (both on the side the eye sees), the terminator
+    // offset, the albedo, the depth, and the colour.
+    std::span<float> nx, ny, nz, fx, fy, fz, offset, ar, ag, ab, z, r, g, b;
+    std::vector<std::uint8_t> faces;  // per pixel, of the last light added: faces it
+    ShadeRow() = default;
+    ShadeRow(const ShadeRow&) = delete;  // its spans point into its own block
+    ShadeRow& operator=(const ShadeRow&) = delete;
     void resize(std::size_t n) {
-      for (std::vector<float>* v : {&nx, &ny, &nz, &offset, &ar, &ag, &ab, &z, &r, &g, &b})
-        v->resize(n);
+      std::span<float>* const components[] = {&nx, &ny, &nz, &fx, &fy, &fz, &offset,
+                                              &ar, &ag, &ab, &z,  &r,  &g,  &b};
+      block.resize(n * std::size(components));
+      for (std::size_t k = 0; k < std::size(components); ++k)
+        *components[k] = std::span<float>(block).subspan(k * n, n);
+      faces.resize(n);
     }
     glm::vec3 color(int x) const {
       const auto i = static_cast<std::size_t>(x);
       return {r[i], g[i], b[i]};
     }
+
+   private:
+    std::vector<float> block;
   };
   // Lights row y of `layer` (its depths `depth`) into out's r, g, b; `lights_at` eye-relative.
+  // Where the layer records which surfaces face each light (faces_light), into it.
   void shade_row(const Scene& scene, const glm::mat4& inv_vp, std::span<const glm::vec4> lights_at,
-                 const SurfaceLayer& layer, std::span<const float> depth, int y,
-                 ShadeRow& out) const;
+                 SurfaceLayer& layer, std::span<const float> depth, int y, ShadeRow& out) const;
   // Per thread, kept between frames: the rows of the opaque and the glass layer being shaded.
   struct ShadeRows {
     ShadeRow surface, through;

@@ -173,6 +173,7 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
   const std::size_t lights = s.lights.size();
   out.faces_light.assign(lights, 0);
   out.shadowed.assign(lights, 0);
+  out.grazing.assign(lights, 0);
   out.transmitted.assign(s.glass ? lights : 0, glm::vec3(0.0f));
   // The ray through NDC (x / w * 2 - 1, 1 - y / h * 2), from the eye (eye-relative space: the
   // origin) through that point of the near plane (depth 1).
@@ -200,6 +201,7 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
     const std::size_t lights = s.lights.size();
     out.faces_light.assign(lights, 0);
     out.shadowed.assign(lights, 0);
+    out.grazing.assign(lights, 0);
     out.transmitted.assign(s.glass ? lights : 0, glm::vec3(0.0f));
     for (std::size_t l = 0; l < lights; ++l) {
       const glm::dvec4& light = s.lights[l];
@@ -208,7 +210,9 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
       const double distance =
           light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
       const glm::dvec3 d = glm::normalize(to_light);
-      if (glm::dot(n, d) <= 0.0) continue;  // faces away: not compared
+      const double cosine = glm::dot(n, d);
+      out.grazing[l] = std::abs(cosine) < kGrazingCosine;
+      if (cosine <= 0.0) continue;  // faces away: not compared
       if (std::isfinite(s.ranges[l]) && !(distance < s.ranges[l])) continue;  // beyond the range
       out.faces_light[l] = 1;
       if (!receives) {
@@ -260,6 +264,7 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
   if (s.glass) {
     out.glass.faces_light.assign(lights, 0);
     out.glass.shadowed.assign(lights, 0);
+    out.glass.grazing.assign(lights, 0);
     out.glass.transmitted.assign(lights, glm::vec3(0.0f));
     // The nearest transparent hit in front of the opaque one (ties: the lower ids, as the
     // rasterizer's first-drawn-wins depth test keeps the first of equal depths).
@@ -291,6 +296,7 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
     layer.face.assign(pixels, 0);
     layer.faces_light.assign(lights, std::vector<std::uint8_t>(pixels, 0));
     layer.shadowed.assign(lights, std::vector<std::uint8_t>(pixels, 0));
+    layer.grazing.assign(lights, std::vector<std::uint8_t>(pixels, 0));
     layer.transmitted.assign(glass ? lights : 0, std::vector<glm::vec3>(pixels));
   };
   auto put = [&](ReferenceLayer& layer, std::size_t p, const ReferenceSurface& s) {
@@ -299,6 +305,7 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
     for (std::size_t l = 0; l < lights; ++l) {
       layer.faces_light[l][p] = s.faces_light[l];
       layer.shadowed[l][p] = s.shadowed[l];
+      layer.grazing[l][p] = s.grazing[l];
       if (glass) layer.transmitted[l][p] = s.transmitted[l];
     }
   };

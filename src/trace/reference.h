@@ -23,13 +23,21 @@
 
 namespace shadowvol {
 
+// A surface whose normal makes a cosine below this with the direction to a light (either side)
+// faces the light or not by rounding alone: a renderer's point for the pixel, a float's step
+// from the reference's, turns it either way (a light in the plane of a floor), and the light's
+// direct term there is nearly 0 either way. verify does not compare a frame's facing there.
+inline constexpr double kGrazingCosine = 1e-4;
+
 // What the reference sees of one surface along one primary ray.
 struct ReferenceSurface {
   std::int32_t object = -1;  // scene object index, -1 for none
   std::uint32_t face = 0;    // face of that object
   // Per light: whether the surface faces the light (its normal, turned towards the eye, points
-  // to the light's side), and whether the segment to the light crosses an opaque surface.
-  std::vector<std::uint8_t> faces_light, shadowed;
+  // to the light's side, and it lies within the light's range), and whether the segment to the
+  // light crosses an opaque surface; whether it is seen nearly edge-on from the light
+  // (kGrazingCosine).
+  std::vector<std::uint8_t> faces_light, shadowed, grazing;
   // Scenes with transparent casters only: per light, the product of the transmittances of the
   // transparent surfaces the segment crosses, each counted once (any-hit over all hits); 0 where
   // shadowed.
@@ -67,6 +75,7 @@ struct ReferenceLayer {
   std::vector<std::uint32_t> face;                     // per pixel: face of that object
   std::vector<std::vector<std::uint8_t>> faces_light;  // per light, per pixel: 1 or 0
   std::vector<std::vector<std::uint8_t>> shadowed;     // per light, per pixel: 1 or 0
+  std::vector<std::vector<std::uint8_t>> grazing;      // per light, per pixel: 1 or 0
   std::vector<std::vector<glm::vec3>> transmitted;     // per light, per pixel; or empty
 };
 

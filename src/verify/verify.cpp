@@ -65,17 +65,23 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
                    const ReferenceTracer* tracer, Pick pick, const Progress& progress,
                    Comparison& c) {
   std::vector<Suspect> suspects;
+  const bool sides = !frame.faces_light.empty();  // the frame says which surfaces face the light
   for (std::size_t l = 0; l < ref.shadowed.size(); ++l) {
     const std::vector<std::uint8_t>& shadow = ref.shadowed[l];
     const std::vector<std::uint8_t>& facing = ref.faces_light[l];
+    const std::vector<std::uint8_t>* grazing = ref.grazing.empty() ? nullptr : &ref.grazing[l];
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const std::size_t p = static_cast<std::size_t>(y) * w + x;
-        if (ref.object[p] < 0 || !facing[p]) continue;
+        if (ref.object[p] < 0) continue;
+        // The frame's side of the light, where the reference's is not a matter of rounding.
+        const bool side = sides && !(grazing && (*grazing)[p]);
+        if (!facing[p] && !side) continue;
         ++c.pixels_compared;
         const bool same_surface = frame.object[p] == ref.object[p];
-        const float error =
-            same_surface ? light_error(frame.transmitted, ref.transmitted, l, p) : 0.0f;
+        const float error = same_surface && facing[p]
+                                ? light_error(frame.transmitted, ref.transmitted, l, p)
+                                : 0.0f;
         c.max_light_error = std::max(c.max_light_error, error);
         // Within one pixel of a boundary of the reference: of its shadow or the light that
         // reaches it, of the surfaces it sees (silhouettes), or of the part that faces the light.
@@ -90,7 +96,8 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
                    (!ref.transmitted.empty() && ref.transmitted[l][q] != ref.transmitted[l][p]);
           }
         const bool same =
-            same_surface && frame.shadowed[l][p] == shadow[p] && error <= kLightTolerance;
+            same_surface && (!side || frame.faces_light[l][p] == facing[p]) &&
+            (!facing[p] || (frame.shadowed[l][p] == shadow[p] && error <= kLightTolerance));
         if (same) {
           if (!band)
             c.max_light_error_outside_band = std::max(c.max_light_error_outside_band, error);

@@ -4,7 +4,11 @@
 // faces the light (in the reference), the rendered shadow mask must equal the reference's,
 // except within one pixel of a shadow or silhouette boundary of the reference. With transparent
 // casters, so must the transmitted light (within kLightTolerance), on both layers: the opaque
-// surfaces, and the nearest transparent surface in front of them.
+// surfaces, and the nearest transparent surface in front of them. Where the frame records which
+// surfaces its lit pass takes as facing each light (RenderOptions::record_facing), so must that,
+// on every pixel that shows a surface, but where the reference sees it nearly edge-on from the
+// light (kGrazingCosine): a shading input no mask shows (a normal lost to overflow leaves a lit
+// face dark, in shadow or not).
 //
 // "Within one pixel" is decided first from the reference at the pixel's eight neighbours. A
 // boundary can pass between pixel centres without changing any of them: a sliver of shadow or
@@ -29,7 +33,9 @@ inline constexpr float kLightTolerance = 1.0f / 255.0f;
 
 struct Comparison {
   std::size_t pixels_compared = 0;  // over all lights and layers
-  std::size_t mismatched = 0;       // different mask, a different surface seen, or different light
+  // A different mask, a different surface seen, a different side of the light, or different
+  // light through transparent casters.
+  std::size_t mismatched = 0;
   std::size_t mismatched_outside_band = 0;  // of those, more than a pixel from any boundary
   // Scenes with transparent casters (else 0): the largest difference of transmitted light from
   // the reference's, any channel, over the compared pixels that see the surface the reference

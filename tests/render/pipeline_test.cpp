@@ -51,6 +51,9 @@ class RecordingBackend final : public FrameBackend {
   void light_pass(std::size_t l, Layer layer) override {
     log("light " + std::to_string(l) + " " + name(layer));
   }
+  void read_facing(std::size_t l, Layer layer, SurfaceLayer&) override {
+    log("read facing " + std::to_string(l) + " " + name(layer));
+  }
   void see_through() override { log("see through"); }
   void shade() override { log("shade"); }
   void read_image(Image&) override { log("read image"); }
@@ -102,12 +105,39 @@ TEST(Pipeline, WalksLayersLightsAndVolumesInOneSequence) {
   EXPECT_GT(frame.stats.volume_primitives, 0u);
 }
 
+TEST(Pipeline, RecordsWhichSurfacesFaceEachLightAfterItsLitPassWhereAsked) {
+  const Scene scene = two_glass_groups();
+  std::vector<std::string> log;
+  Renderer renderer(std::make_unique<RecordingBackend>(log));
+  Frame frame;
+  RenderOptions options{32, 18};
+  renderer.render(scene, options, frame);
+  EXPECT_EQ(std::count(log.begin(), log.end(), "read facing 0 opaque"), 0);
+  EXPECT_TRUE(frame.faces_light.empty());
+  log.clear();
+  options.record_facing = true;
+  renderer.render(scene, options, frame);
+  for (const char* layer : {"opaque", "glass"}) {
+    const auto lit = std::find(log.begin(), log.end(), std::string("light 0 ") + layer);
+    ASSERT_NE(lit, log.end());
+    ASSERT_NE(lit + 1, log.end());
+    EXPECT_EQ(*(lit + 1), std::string("read facing 0 ") + layer);
+  }
+  for (const SurfaceLayer* layer :
+       {static_cast<const SurfaceLayer*>(&frame), static_cast<const SurfaceLayer*>(&frame.glass)}) {
+    ASSERT_EQ(layer->faces_light.size(), 1u);
+    EXPECT_EQ(layer->faces_light[0], std::vector<std::uint8_t>(32u * 18u, 0));  // zeroed
+  }
+}
+
 TEST(Pipeline, APresentedFrameIsReadBackNowhere) {
   Scene scene = *builtin_scene("demo");
   std::vector<std::string> log;
   Renderer renderer(std::make_unique<RecordingBackend>(log, true));
   Frame frame;
-  renderer.present(scene, {32, 18}, frame);
+  RenderOptions options{32, 18};
+  options.record_facing = true;
+  renderer.present(scene, options, frame);
   for (const std::string& line : log) EXPECT_EQ(line.rfind("read", 0), std::string::npos) << line;
   EXPECT_EQ(log.back(), "present");
   EXPECT_EQ(std::count(log.begin(), log.end(), "depth opaque"), 1);

@@ -19,6 +19,7 @@
 #include "scene/scene_io.h"
 #include "scene/stage.h"
 #include "soft/soft_backend.h"
+#include "test_meshes.h"
 
 namespace shadowvol {
 namespace {
@@ -470,15 +471,7 @@ TEST(Shading, RangeFalloffEndsAtTheRange) {
 namespace shadowvol {
 namespace {
 
-// The scene k times larger: camera, near plane, point lights and objects alike.
-Scene scaled(Scene scene, float k) {
-  scene.camera.position *= k, scene.camera.target *= k, scene.camera.near *= k;
-  for (SceneLight& light : scene.lights)
-    if (light.position.w != 0.0f) light.position = glm::vec4(glm::vec3(light.position) * k, 1.0f);
-  for (SceneObject& object : scene.objects)
-    object.transform = glm::scale(glm::mat4(1.0f), glm::vec3(k)) * object.transform;
-  return scene;
-}
+using testing::scaled;
 
 // Shading is scale-free: faces a billion units across (whose float normals overflowed, leaving
 // them lit by the ambient light alone) shade as the same faces a unit across.

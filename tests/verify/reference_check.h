@@ -21,7 +21,9 @@ inline std::unique_ptr<Renderer> renderer_for(Backend backend) {
   return made ? std::move(made->renderer) : nullptr;
 }
 
-inline Frame render_checked(Renderer& renderer, const Scene& scene, const RenderOptions& options) {
+// Which surfaces face each light compared too (RenderOptions::record_facing).
+inline Frame render_checked(Renderer& renderer, const Scene& scene, RenderOptions options) {
+  options.record_facing = true;
   Frame frame = renderer.render(scene, options);
   auto reference = trace_reference(scene, options.width, options.height);
   EXPECT_TRUE(reference.ok());

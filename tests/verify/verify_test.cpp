@@ -119,6 +119,7 @@ Comparison verify(const Scene& scene, Method method, Generator generator = Gener
   options.cull = variant.cull;
   options.clamp = variant.clamp;
   options.slices = 8;  // strips drawn apart, not the default's one strip for the whole image
+  options.record_facing = true;
   const Frame frame = render(variant, scene, options);
   if (frame.object.empty()) return {};
   auto reference = trace_reference(scene, kWidth, kHeight);
@@ -680,8 +681,8 @@ TEST(TransparentCasters, CompareCatchesWrongLight) {
   ASSERT_TRUE(reference.ok()) << reference.error().message;
   const ReferenceFrame& ref = *reference;
   Frame frame;
-  static_cast<SurfaceLayer&>(frame) = {ref.object, ref.face, ref.shadowed, ref.transmitted};
-  frame.glass = {ref.glass.object, ref.glass.face, ref.glass.shadowed, ref.glass.transmitted};
+  static_cast<SurfaceLayer&>(frame) = {ref.object, ref.face, ref.shadowed, ref.transmitted, {}};
+  frame.glass = {ref.glass.object, ref.glass.face, ref.glass.shadowed, ref.glass.transmitted, {}};
   EXPECT_EQ(compare(frame, ref).mismatched, 0u);
   // A pixel in a coloured shadow whose neighbours all get the same light.
   std::size_t planted = 0;
@@ -892,6 +893,72 @@ TEST(LightOnASurface, ShadowsWhatLiesBeyondTheCaster) {
     for (Method m : {Method::zpass, Method::zfail, Method::automatic})
       EXPECT_EQ(verify(scene, m, Generator::automatic, v).mismatched_outside_band, 0u)
           << "turned box, " << v.name << ", " << to_string(m);
+}
+
+// Which surfaces face a light, as a frame records it (RenderOptions::record_facing), is compared
+// too: a frame equal to the reference but for one lit pixel its lit pass took as turned away (a
+// normal lost, the face left to the ambient light), or one pixel turned away it took as facing
+// the light, mismatches outside the band; a surface the light grazes is not held to a side.
+TEST(Verify, CompareCatchesASurfaceOnTheWrongSideOfTheLight) {
+  const Scene scene = *builtin_scene("demo");
+  auto reference = trace_reference(scene, kWidth, kHeight);
+  ASSERT_TRUE(reference.ok()) << reference.error().message;
+  const ReferenceFrame& ref = *reference;
+  Frame frame;
+  static_cast<SurfaceLayer&>(frame) = {ref.object, ref.face, ref.shadowed, {}, ref.faces_light};
+  EXPECT_EQ(compare(frame, ref).mismatched, 0u);
+  // A pixel, on the given side of light 0 and unshadowed, whose neighbours are all the same.
+  auto even_pixel = [&](std::uint8_t side) -> std::size_t {
+    for (int y = 1; y + 1 < kHeight; ++y)
+      for (int x = 1; x + 1 < kWidth; ++x) {
+        bool even = true;
+        const std::size_t p = static_cast<std::size_t>(y) * kWidth + x;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const std::size_t q = static_cast<std::size_t>(y + dy) * kWidth + x + dx;
+            even = even && ref.object[q] == ref.object[p] && ref.object[q] >= 0 &&
+                   ref.faces_light[0][q] == side && ref.shadowed[0][q] == 0 &&
+                   ref.grazing[0][q] == 0;
+          }
+        if (even) return p;
+      }
+    return 0;
+  };
+  for (const std::uint8_t side : {1, 0}) {
+    const std::size_t p = even_pixel(side);
+    ASSERT_NE(p, 0u) << "no even surface on side " << int(side);
+    frame.faces_light[0][p] = !side;
+    const Comparison c = compare(frame, ref);
+    EXPECT_EQ(c.mismatched, 1u) << "side " << int(side);
+    EXPECT_EQ(c.mismatched_outside_band, 1u) << "side " << int(side);
+    EXPECT_EQ(c.verdict[p], 2) << "side " << int(side);
+    frame.faces_light[0][p] = side;
+  }
+  // Without a record of it, the sides are not compared.
+  Frame unrecorded = frame;
+  unrecorded.faces_light.clear();
+  EXPECT_EQ(compare(unrecorded, ref).mismatched, 0u);
+  // Where the light grazes the surface, either side matches.
+  ReferenceFrame grazed = ref;
+  const std::size_t p = even_pixel(1);
+  grazed.grazing[0][p] = 1;
+  frame.faces_light[0][p] = 0;
+  EXPECT_EQ(compare(frame, grazed).mismatched, 0u);
+}
+
+// Faces billions of units across, whose normals overflow float (the software backend's lit them
+// by the ambient light alone, its shadow masks all correct): every backend's lit pass takes the
+// same faces as facing the light as the reference does.
+TEST(Verify, AHugeSceneFacesTheLightsTheReferenceSays) {
+  for (const std::string name : {"demo", "knight", "glass"}) {
+    const Scene huge = testing::scaled(*builtin_scene(name), 2e9f);
+    ASSERT_TRUE(check_frame(huge, {kWidth, kHeight}).ok());
+    for (const Variant& v : kVariants) {
+      const Comparison c = verify(huge, Method::zfail, Generator::automatic, v);
+      EXPECT_GT(c.pixels_compared, std::size_t{kWidth * kHeight / 4}) << name << " " << v.name;
+      EXPECT_EQ(c.mismatched_outside_band, 0u) << name << " " << v.name;
+    }
+  }
 }
 
 }  // namespace
