@@ -222,13 +222,11 @@ void main() {
   float x = d2 * falloff.x;
   // The face, not the normal shaded with, decides the side of the light the surface is on
   // (render/shading.h).
-  bool faces = dot(face, towards) > 0.0 && x * x < 1.0;
+  if (!(dot(face, towards) > 0.0 && x * x < 1.0)) discard;
   if (facing_only) {
-    if (!faces) discard;
     color = vec4(1.0);
     return;
   }
-  if (!faces) discard;
   if (count_texture && texelFetch(counts, ivec2(gl_FragCoord.xy), 0).r != 0.0) discard;
   vec3 arriving = light_map ? exp(texelFetch(log_light, ivec2(gl_FragCoord.xy), 0).rgb) : vec3(1.0);
   vec3 n = face;

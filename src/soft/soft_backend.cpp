@@ -688,6 +688,8 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
     RowPoints from_x0 = points;
     from_x0.base += points.step * float(rect.x0);
     const glm::vec3* arriving = layer.transmitted.empty() ? nullptr : &layer.transmitted[l][at];
+    // Which pixels face the light: into the layer where it records them, else thrown away.
+    std::uint8_t* faces = layer.faces_light.empty() ? out.faces.data() : &layer.faces_light[l][at];
     (arriving ? add_light<true>
               : add_light<false>)(rect.x1 - rect.x0, from_x0, lights_at[l], light, falloff,
                                   out.z.data() + x0, out.nx.data() + x0, out.ny.data() + x0,
@@ -695,9 +697,7 @@ void SoftBackend::shade_row(const Scene& scene, const glm::mat4& inv_vp,
                                   out.fz.data() + x0, out.offset.data() + x0, out.ar.data() + x0,
                                   out.ag.data() + x0, out.ab.data() + x0, &layer.shadowed[l][at],
                                   arriving, out.r.data() + x0, out.g.data() + x0, out.b.data() + x0,
-                                  out.faces.data());
-    if (!layer.faces_light.empty())
-      std::copy_n(out.faces.data(), rect.x1 - rect.x0, &layer.faces_light[l][at]);
+                                  faces);
   }
 }
 

@@ -136,7 +136,7 @@ class SoftBackend final : public FrameBackend {
     // The normal shaded with and the face's own (both on the side the eye sees), the terminator
     // offset, the albedo, the depth, and the colour.
     std::span<float> nx, ny, nz, fx, fy, fz, offset, ar, ag, ab, z, r, g, b;
-    std::vector<std::uint8_t> faces;  // per pixel, of the last light added: faces it
+    std::vector<std::uint8_t> faces;  // per pixel: faces the light (unless the layer keeps it)
     ShadeRow() = default;
     ShadeRow(const ShadeRow&) = delete;  // its spans point into its own block
     ShadeRow& operator=(const ShadeRow&) = delete;
