@@ -95,6 +95,9 @@ void add_frame_options(CLI::App* cmd, FrameArgs& args, bool with_backend) {
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_flag("--flat", args.flat,
                 "Shade every face flat, ignoring the mesh files' normals (shadows do not change)");
+  cmd->add_flag("--opaque", args.opaque,
+                "Make every object opaque: plain shadows, whatever the files' materials say of "
+                "transparency (their colours kept)");
   cmd->add_option("--camera", args.camera,
                   "A mesh file's own camera, by name (glTF, COLLADA, FBX); without it, the file's "
                   "first camera, or the default stage's where it has none");
@@ -149,6 +152,7 @@ Expected<ResolvedFrame> resolve(const FrameArgs& args, std::optional<Scene> scen
   if (!args.camera.empty())
     if (auto ok = use_camera(*loaded, args.camera); !ok) return ok.error();
   if (args.flat) shade_flat(loaded->scene);
+  if (args.opaque) make_opaque(loaded->scene);
   for (const std::string& w : loaded->warnings) warn(w);
   auto method = parsed("--method", args.method, parse_method);
   if (!method) return method.error();

@@ -63,6 +63,7 @@ struct FrameArgs {
   int light_view = 512;
   bool serial_volumes = false;  // RenderOptions::overlap_volumes off
   bool flat = false;            // shade every face flat (shade_flat)
+  bool opaque = false;          // every caster opaque (make_opaque)
   std::string camera = "";  // a mesh file's own camera by name; empty: its first, or the stage's
   int frame = 0;            // --frame: the scene as it stands at this frame of its animation
 };

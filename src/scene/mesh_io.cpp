@@ -239,6 +239,25 @@ Material material_of(const aiMaterial& m) {
   return out;
 }
 
+// COLLADA's transparency (assimp 5.2 applies its opaque modes: A_ONE, the default, opacity =
+// transparent.a x transparency; A_ZERO 1 - that; RGB_ONE and RGB_ZERO by the colour's luminance)
+// and MTL's Tr (1 - d) are written inverted by many exporters: "transparency 0" or "Tr 1" for a
+// material with no transparency, which the conventions read as fully see-through. A surface a
+// file draws at opacity 0 would be invisible and cast no shadow, never what the file means, so
+// these formats' opacity 0 is read as opaque, as the common viewers show such files, and said.
+void read_no_transparency_as_opaque(const std::filesystem::path& file, FileMaterial& material,
+                                    std::vector<std::string>& warnings) {
+  std::string extension = file.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if ((extension != ".dae" && extension != ".obj") || material.material.opacity != 0.0f) return;
+  material.material.opacity = 1.0f;
+  warnings.push_back(file.string() + ": material '" + material.name +
+                     "' is fully transparent as the file is written (opacity 0: " +
+                     (extension == ".dae" ? "COLLADA transparency 0 under A_ONE"
+                                          : "MTL d 0 or Tr 1") +
+                     "), which exporters write for no transparency; read as opaque");
+}
+
 // The materials the triangles use, where any is the file's own (not assimp's default); else
 // none, and the triangles' indices are dropped.
 void gather_materials(const aiScene& scene, const std::filesystem::path& file, LoadedMesh& out) {
@@ -261,6 +280,7 @@ void gather_materials(const aiScene& scene, const std::filesystem::path& file, L
       slot[i] = static_cast<std::uint32_t>(out.materials.size());
       out.materials.push_back(
           {scene.mMaterials[i]->GetName().C_Str(), material_of(*scene.mMaterials[i])});
+      read_no_transparency_as_opaque(file, out.materials.back(), out.warnings);
       out.materials.back().material.base_color_map =
           base_color_map(scene, *scene.mMaterials[i], file, out.warnings);
     }

@@ -107,6 +107,10 @@ void shade_flat(Scene& scene) {
   for (SceneObject& o : scene.objects) o.shading = nullptr;
 }
 
+void make_opaque(Scene& scene) {
+  for (SceneObject& o : scene.objects) o.material.opacity = 1.0f;
+}
+
 bool has_transparent_casters(const Scene& scene) {
   return std::any_of(scene.objects.begin(), scene.objects.end(),
                      [](const SceneObject& o) { return o.material.transparent(); });

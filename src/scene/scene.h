@@ -188,6 +188,9 @@ inline SceneObject make_object(std::string name, Mesh mesh, const glm::mat4& tra
 
 // Every object shaded flat (`--flat`): its shading normals dropped.
 void shade_flat(Scene& scene);
+// Every object opaque (`--opaque`, a scene file's "opaque": true): opacity 1, colours kept, so
+// that every caster casts a plain shadow whatever its file's material says of transparency.
+void make_opaque(Scene& scene);
 // Whether any object of the scene is transparent (Material::transparent).
 bool has_transparent_casters(const Scene& scene);
 

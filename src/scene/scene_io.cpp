@@ -197,9 +197,14 @@ struct Reader {
       out = make_bumpy_torus(96, 32, 1.0f, 0.35f, 0);
     else if (name == "bumpy_torus")
       out = make_bumpy_torus(96, 32);
+    else if (name == "tube")  // along y, from -0.5 to 0.5, radius 0.5: scaled into rods and pipes
+      out = make_tube(glm::vec3(0, -0.5f, 0), glm::vec3(0, 0.5f, 0), 0.5f, 0.5f, 24);
+    else if (name == "sphere")
+      out = make_sphere(glm::vec3(0.0f), 0.5f, 24, 48);
     else
       return fail(path, "unknown shape '" + name +
-                            "' (expected box, open_box, ground, torus or bumpy_torus)");
+                            "' (expected box, open_box, ground, torus, bumpy_torus, tube or "
+                            "sphere)");
     return true;
   }
 };
@@ -213,7 +218,7 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
   const std::string& name = r.file;
   Scene scene;
   scene.name = path.stem().string();
-  if (!r.keys(root, "scene", {"camera", "lights", "objects", "ambient"}))
+  if (!r.keys(root, "scene", {"camera", "lights", "objects", "ambient", "opaque"}))
     return make_error(r.error);
 
   if (!root.contains("camera")) return make_error(name + ": scene.camera: missing");
@@ -453,6 +458,11 @@ Expected<Scene> read_scene(const std::filesystem::path& path, const json& root, 
         scene.objects.push_back(std::move(part));
       }
     }
+  }
+  if (root.contains("opaque")) {  // every caster opaque, whatever its material (make_opaque)
+    if (!root["opaque"].is_boolean())
+      return make_error(name + ": scene.opaque: expected true or false");
+    if (root["opaque"].get<bool>()) make_opaque(scene);
   }
   return scene;
 }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -131,6 +132,7 @@ struct ReferenceTracer::State {
   bool glass = false;                     // any transparent caster
   bool filtered = false;                  // a filter is needed: glass, or objects not casting
   std::vector<std::uint8_t> transparent;  // per object
+  std::vector<std::uint8_t> none_transparent;  // per object, all 0: every caster blocks
   std::vector<std::uint8_t> not_casting, not_receiving;  // per object
   std::vector<glm::dvec3> transmittance;                 // per object
 };
@@ -162,24 +164,141 @@ Expected<std::shared_ptr<const ReferenceTracer>> ReferenceTracer::create(const S
     state->not_receiving.push_back(!object.receives_shadows);
     state->filtered = state->filtered || !object.casts_shadows;
     state->transparent.push_back(object.material.transparent());
+    state->none_transparent.push_back(0);
     state->transmittance.emplace_back(object.material.transmittance());
   }
   return std::shared_ptr<const ReferenceTracer>(new ReferenceTracer(std::move(state)));
+}
+
+namespace {
+
+// The ray through window point (x, y): through NDC (x / w * 2 - 1, 1 - y / h * 2), from the eye
+// (eye-relative space: the origin) through that point of the near plane (depth 1); unit length.
+glm::dvec3 ray_direction(const glm::dmat4& inv_view_proj, int width, int height, double x,
+                         double y) {
+  const glm::dvec4 on_near =
+      inv_view_proj * glm::dvec4(x / width * 2.0 - 1.0, 1.0 - y / height * 2.0, 1.0, 1.0);
+  return glm::normalize(glm::dvec3(on_near) / on_near.w);
+}
+
+// A shadow ray from `origin` along the unit d towards a light `distance` from `pos`: up to a hair
+// short of a point light, so that a surface through the light itself (a lamp on a table) shadows
+// only where rays cross it beyond the light (docs/volumes.md, "A light on a surface"); the hair is
+// many float steps of the coordinates involved.
+RTCRay shadow_ray(const glm::dvec3& origin, const glm::dvec3& pos, const glm::dvec3& d,
+                  double distance) {
+  RTCRay shadow{};
+  shadow.org_x = float(origin.x), shadow.org_y = float(origin.y), shadow.org_z = float(origin.z);
+  shadow.dir_x = float(d.x), shadow.dir_y = float(d.y), shadow.dir_z = float(d.z);
+  shadow.tnear = 0.0f;
+  shadow.tfar = std::isinf(distance) ? std::numeric_limits<float>::infinity()
+                                     : float(distance - 1e-6 * (glm::length(pos) + distance));
+  shadow.mask = 0xffffffffu;
+  return shadow;
+}
+
+}  // namespace
+
+bool triangle_nearer_within(const glm::dvec3 (&c)[3], double x, double y, double distance,
+                            const std::function<glm::dvec3(const glm::dvec3&)>& to_window,
+                            const std::function<glm::dvec3(double, double)>& ray) {
+  const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+  if (!(glm::dot(n, n) > 0.0)) return false;
+  // Where the ray through window point (wx, wy) meets the triangle's plane: nearer than distance?
+  const auto nearer_at = [&](double wx, double wy) {
+    const glm::dvec3 dir = ray(wx, wy);
+    const double across = glm::dot(n, dir);
+    if (across == 0.0) return false;
+    const double t = glm::dot(n, c[0]) / across;
+    return t > 0.0 && t < distance;
+  };
+  // The triangle in the window, cut to the square; 1 / depth is affine over a plane's projection,
+  // so the nearest point of what is left is one of its corners.
+  std::vector<glm::dvec2> poly;
+  for (const glm::dvec3& corner : c) {
+    const glm::dvec3 w = to_window(corner);
+    if (!(w.z > 0.0)) return false;  // reaches behind the eye: taken as not in the pixel
+    poly.emplace_back(w.x, w.y);
+  }
+  const double bounds[4] = {x - 1.0, x + 1.0, y - 1.0, y + 1.0};
+  for (int side = 0; side < 4 && !poly.empty(); ++side) {
+    const int axis = side / 2;
+    const double limit = bounds[side], sign = side % 2 == 0 ? 1.0 : -1.0;  // keep sign*(p-limit)>=0
+    std::vector<glm::dvec2> kept;
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const glm::dvec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+      const double da = sign * (a[axis] - limit), db = sign * (b[axis] - limit);
+      if (da >= 0.0) kept.push_back(a);
+      if ((da >= 0.0) != (db >= 0.0)) kept.push_back(a + (b - a) * (da / (da - db)));
+    }
+    poly = std::move(kept);
+  }
+  for (const glm::dvec2& p : poly)
+    if (nearer_at(p.x, p.y)) return true;
+  return false;
+}
+
+bool ReferenceTracer::face_nearer_within(double x, double y, std::int32_t object,
+                                         std::uint32_t face, double distance) const {
+  const State& s = *state_;
+  if (object < 0) return false;
+  RTCGeometry g = rtcGetGeometry(s.scene.get(), static_cast<unsigned>(object));
+  if (g == nullptr) return false;
+  const auto* v = static_cast<const float*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
+  const auto* i =
+      static_cast<const unsigned*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_INDEX, 0));
+  if (v == nullptr || i == nullptr) return false;
+  glm::dvec3 c[3];
+  for (int k = 0; k < 3; ++k) {
+    const float* p = v + 3 * std::size_t{i[3 * std::size_t{face} + k]};
+    c[k] = {p[0], p[1], p[2]};
+  }
+  const glm::dmat4 view_proj = glm::inverse(s.inv_view_proj);
+  return triangle_nearer_within(
+      c, x, y, distance,
+      [&](const glm::dvec3& p) {
+        const glm::dvec4 clip = view_proj * glm::dvec4(p, 1.0);
+        return glm::dvec3((clip.x / clip.w + 1.0) * 0.5 * s.width,
+                          (1.0 - clip.y / clip.w) * 0.5 * s.height, clip.w);
+      },
+      [&](double wx, double wy) { return ray_direction(s.inv_view_proj, s.width, s.height, wx, wy); });
+}
+
+std::vector<std::uint8_t> ReferenceTracer::near_plane_shadowed(double x, double y) const {
+  const State& s = *state_;
+  std::vector<std::uint8_t> out(s.lights.size(), 0);
+  const glm::dvec4 on_near =
+      s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0, 1.0 - y / s.height * 2.0, 1.0, 1.0);
+  const glm::dvec3 pos = glm::dvec3(on_near) / on_near.w;
+  for (std::size_t l = 0; l < s.lights.size(); ++l) {
+    const glm::dvec4& light = s.lights[l];
+    const glm::dvec3 to_light =
+        light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
+    const double distance =
+        light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
+    const glm::dvec3 d = glm::normalize(to_light);
+    RTCRay shadow = shadow_ray(pos, pos, d, distance);
+    // Transparent casters shadow here too: any caster's volume counts.
+    GlassContext context{{}, &s.none_transparent, &s.not_casting, {}};
+    rtcInitIntersectContext(&context.context);
+    if (s.filtered) context.context.filter = see_through_glass;
+    rtcOccluded1(s.scene.get(), &context.context, &shadow);
+    out[l] = shadow.tfar < 0.0f;
+  }
+  return out;
 }
 
 ReferenceSample ReferenceTracer::sample(double x, double y) const {
   const State& s = *state_;
   ReferenceSample out;
   const std::size_t lights = s.lights.size();
+  out.distance = std::numeric_limits<double>::infinity();
+  out.glass.distance = out.distance;
   out.faces_light.assign(lights, 0);
   out.shadowed.assign(lights, 0);
   out.grazing.assign(lights, 0);
   out.transmitted.assign(s.glass ? lights : 0, glm::vec3(0.0f));
-  // The ray through NDC (x / w * 2 - 1, 1 - y / h * 2), from the eye (eye-relative space: the
-  // origin) through that point of the near plane (depth 1).
-  const glm::dvec4 on_near =
-      s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0, 1.0 - y / s.height * 2.0, 1.0, 1.0);
-  const glm::dvec3 dir = glm::normalize(glm::dvec3(on_near) / on_near.w);
+  const glm::dvec3 dir = ray_direction(s.inv_view_proj, s.width, s.height, x, y);
   if (!std::isfinite(dir.x) || !std::isfinite(dir.y) || !std::isfinite(dir.z)) return out;
   GlassContext context{{}, &s.transparent, nullptr, {}};
   rtcInitIntersectContext(&context.context);
@@ -222,18 +341,7 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
       // Start a hair off the surface, towards the light's side, to leave its own triangle: a
       // hair of its distance from the eye, far above float's steps there and, whatever the
       // scene's scale, far below its features (DESIGN.md "Numerics").
-      const glm::dvec3 origin = pos + n * (1e-5 * glm::length(pos));
-      RTCRay shadow{};
-      shadow.org_x = float(origin.x), shadow.org_y = float(origin.y),
-      shadow.org_z = float(origin.z);
-      shadow.dir_x = float(d.x), shadow.dir_y = float(d.y), shadow.dir_z = float(d.z);
-      shadow.tnear = 0.0f;
-      // Up to a hair short of a point light: a surface through the light itself (a lamp on a
-      // table) shadows only where rays cross it beyond the light (docs/volumes.md, "A light on a
-      // surface"); the hair is many float steps of the coordinates involved.
-      shadow.tfar = std::isinf(distance) ? std::numeric_limits<float>::infinity()
-                                         : float(distance - 1e-6 * (glm::length(pos) + distance));
-      shadow.mask = 0xffffffffu;
+      RTCRay shadow = shadow_ray(pos + n * (1e-5 * glm::length(pos)), pos, d, distance);
       GlassContext context{{}, &s.transparent, &s.not_casting, {}};
       rtcInitIntersectContext(&context.context);
       if (s.glass || s.filtered) context.context.filter = see_through_glass;
@@ -253,6 +361,7 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
                      ReferenceSurface& layer) {
     layer.object = static_cast<std::int32_t>(geometry);
     layer.face = primitive;
+    layer.distance = double(t);
     const glm::dvec3 pos = dir * double(t);
     glm::dvec3 n = glm::normalize(glm::dvec3(ng));
     if (glm::dot(n, dir) > 0.0) n = -n;  // the side the eye sees
@@ -286,11 +395,16 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
   if (progress) progress("building the reference's BVH (Embree)", 0.0f);
   auto tracer = ReferenceTracer::create(scene, width, height);
   if (!tracer) return tracer.error();
+  return trace_frame(std::move(*tracer), width, height, scene.lights.size(),
+                     has_transparent_casters(scene), progress);
+}
+
+Expected<ReferenceFrame> trace_frame(std::shared_ptr<const ReferenceSampler> sampler, int width,
+                                     int height, std::size_t lights, bool glass,
+                                     const Progress& progress) {
   ReferenceFrame ref;
   ref.width = width, ref.height = height;
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  const std::size_t lights = scene.lights.size();
-  const bool glass = has_transparent_casters(scene);
   auto size = [&](ReferenceLayer& layer) {
     layer.object.assign(pixels, -1);
     layer.face.assign(pixels, 0);
@@ -311,6 +425,7 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
   };
   size(ref);
   if (glass) size(ref.glass);
+  ref.near_plane_shadowed.assign(lights, std::vector<std::uint8_t>(pixels, 0));
   // Rows in parallel, a slice of them at a time so that progress is said between slices.
   const int slice = std::max(1, height / 64);
   for (int y0 = 0; y0 < height; y0 += slice) {
@@ -320,15 +435,19 @@ Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int heig
                         for (int y = rows.begin(); y < rows.end(); ++y)
                           for (int x = 0; x < width; ++x) {
                             const std::size_t p = static_cast<std::size_t>(y) * width + x;
-                            const ReferenceSample s = (*tracer)->sample(x + 0.5, y + 0.5);
+                            const ReferenceSample s = sampler->sample(x + 0.5, y + 0.5);
                             put(ref, p, s);
                             if (glass) put(ref.glass, p, s.glass);
+                            const std::vector<std::uint8_t> near =
+                                sampler->near_plane_shadowed(x + 0.5, y + 0.5);
+                            for (std::size_t l = 0; l < lights; ++l)
+                              ref.near_plane_shadowed[l][p] = near[l];
                           }
                       });
   }
   if (progress) progress("tracing the reference", 1.0f);
-  if (std::string e = (*tracer)->error(); !e.empty()) return make_error(e + " while tracing");
-  ref.tracer = std::move(*tracer);
+  if (std::string e = sampler->error(); !e.empty()) return make_error(e + " while tracing");
+  ref.tracer = std::move(sampler);
   return ref;
 }
 

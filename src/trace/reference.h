@@ -33,6 +33,7 @@ inline constexpr double kGrazingCosine = 1e-4;
 struct ReferenceSurface {
   std::int32_t object = -1;  // scene object index, -1 for none
   std::uint32_t face = 0;    // face of that object
+  double distance = 0.0;     // from the eye, along the ray (infinite where none)
   // Per light: whether the surface faces the light (its normal, turned towards the eye, points
   // to the light's side, and it lies within the light's range), and whether the segment to the
   // light crosses an opaque surface; whether it is seen nearly edge-on from the light
@@ -50,18 +51,53 @@ struct ReferenceSample : ReferenceSurface {
   ReferenceSurface glass;
 };
 
+// A reference: what the rays through points of a width x height window of scene.camera see.
+// Embree's (ReferenceTracer, below) decides; a second one written apart (brute/, every triangle
+// in double) checks it.
+class ReferenceSampler {
+ public:
+  virtual ~ReferenceSampler() = default;
+  // The ray through window point (x, y), in pixels from the top-left corner: pixel (i, j) is
+  // sampled at (i + 0.5, j + 0.5), as the rasterizer samples it.
+  virtual ReferenceSample sample(double x, double y) const = 0;
+  // Per light, whether the point where the ray through (x, y) leaves the near plane lies in a
+  // shadow: a surface that casts shadows (opaque or transparent) crosses the segment from it to
+  // the light. There z-pass, which counts from the near plane, cannot be exact (Everitt &
+  // Kilgard 2002; the eye in a shadow is the common case of it).
+  virtual std::vector<std::uint8_t> near_plane_shadowed(double x, double y) const = 0;
+  // Whether face `face` of object `object` crosses, nearer the eye than `distance`, a ray through
+  // the square of window points within one pixel of (x, y) (triangle_nearer_within): a surface in
+  // front of what the ray through (x, y) sees, whose outline therefore passes within a pixel of
+  // it, though it may be hidden everywhere (a face turned away from the eye, behind its neighbour
+  // at a silhouette of an object over itself, seen edge-on: thinner than any sampling).
+  virtual bool face_nearer_within(double x, double y, std::int32_t object, std::uint32_t face,
+                                  double distance) const = 0;
+  // Empty, or the error met while tracing.
+  virtual std::string error() const { return {}; }
+};
+
+// Whether the eye-relative triangle c, in front of the eye, covers part of the window square
+// within one pixel of (x, y) nearer the eye than `distance` along the rays through it: exactly, the
+// triangle's window projection cut to the square and its plane's depth at the corners left.
+// to_window: an eye-relative point to window (x, y) and its clip w; ray: the unit direction
+// through a window point. A triangle reaching behind the eye is taken as not covering it.
+bool triangle_nearer_within(const glm::dvec3 (&c)[3], double x, double y, double distance,
+                            const std::function<glm::dvec3(const glm::dvec3&)>& to_window,
+                            const std::function<glm::dvec3(double, double)>& ray);
+
 // The scene built once for Embree, traced through a width x height window of scene.camera.
-class ReferenceTracer {
+class ReferenceTracer final : public ReferenceSampler {
  public:
   // Fails if Embree cannot be set up or cannot build the scene.
   static Expected<std::shared_ptr<const ReferenceTracer>> create(const Scene& scene, int width,
                                                                  int height);
-  ~ReferenceTracer();
-  // The ray through window point (x, y), in pixels from the top-left corner: pixel (i, j) is
-  // sampled at (i + 0.5, j + 0.5), as the rasterizer samples it.
-  ReferenceSample sample(double x, double y) const;
+  ~ReferenceTracer() override;
+  ReferenceSample sample(double x, double y) const override;
+  std::vector<std::uint8_t> near_plane_shadowed(double x, double y) const override;
+  bool face_nearer_within(double x, double y, std::int32_t object, std::uint32_t face,
+                          double distance) const override;
   // Empty, or the error Embree has reported while tracing.
-  std::string error() const;
+  std::string error() const override;
 
  private:
   struct State;
@@ -84,8 +120,10 @@ struct ReferenceLayer {
 struct ReferenceFrame : ReferenceLayer {
   int width = 0, height = 0;
   ReferenceLayer glass;  // empty when the scene has no transparent caster
-  // The tracer that made the frame, for samples between pixel centres.
-  std::shared_ptr<const ReferenceTracer> tracer;
+  // Per light, per pixel: ReferenceSampler::near_plane_shadowed at the pixel's centre.
+  std::vector<std::vector<std::uint8_t>> near_plane_shadowed;
+  // The sampler that made the frame, for samples between pixel centres.
+  std::shared_ptr<const ReferenceSampler> tracer;
 };
 
 // Long work reports what it is doing and the fraction of it done, in [0, 1], now and then, on the
@@ -96,5 +134,10 @@ using Progress = std::function<void(std::string_view doing, float fraction)>;
 // parallel. Fails if Embree cannot be set up.
 Expected<ReferenceFrame> trace_reference(const Scene& scene, int width, int height,
                                          const Progress& progress = {});
+// The same through any sampler made for that window and the scene's `lights`, which has
+// transparent casters or not (`glass`). Fails if the sampler reports an error.
+Expected<ReferenceFrame> trace_frame(std::shared_ptr<const ReferenceSampler> sampler, int width,
+                                     int height, std::size_t lights, bool glass,
+                                     const Progress& progress = {});
 
 }  // namespace shadowvol

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <string>
 
+#include "brute/brute_reference.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <glm/common.hpp>
@@ -24,19 +26,34 @@ float light_error(const std::vector<std::vector<glm::vec3>>& a,
 // centres of the neighbours of pixel (x, y): it is sampled every 1 / kSteps pixel. A sixteenth,
 // as a quarter missed a lit gap three sixteenths wide between two leaves' shadows (`tree`, frame
 // 50, 480 x 270); the cost falls only on the rare mismatches with no boundary at a neighbour.
+//
+// Or, where the frame sees at (x, y) another face of the object the reference sees, whether that
+// face lies there in front of the reference's surface at (x, y), or is seen there at all: a
+// silhouette of one object over itself (the inner rim of a torus) passes within the pixel, where
+// a face turned from the eye ends at its neighbour's edge and a rasterizer's vertices, snapped
+// to its subpixel grid, may leave a hair of it over the centre. (Between objects, the change of
+// object is the boundary.)
 template <class Pick>
-bool boundary_between_centres(const ReferenceTracer& tracer, int x, int y, std::size_t l,
-                              Pick pick) {
+bool boundary_between_centres(const ReferenceSampler& tracer, const Mismatch& m, Pick pick) {
+  const int x = m.x, y = m.y;
+  const std::size_t l = m.light;
+  const bool other_face = m.object == m.reference_object && m.face != m.reference_face;
   constexpr int kSteps = 16;
   const auto at = [&](int i, int j) {
     return tracer.sample(x + 0.5 + double(i) / kSteps, y + 0.5 + double(j) / kSteps);
   };
+  if (other_face) {
+    const ReferenceSample centre = at(0, 0);
+    if (tracer.face_nearer_within(x + 0.5, y + 0.5, m.object, m.face, pick(centre).distance))
+      return true;
+  }
   const ReferenceSample first_sample = at(-kSteps, -kSteps);
   const ReferenceSurface& first = pick(first_sample);
   for (int j = -kSteps; j <= kSteps; ++j)
     for (int i = -kSteps; i <= kSteps; ++i) {
       const ReferenceSample sample = at(i, j);
       const ReferenceSurface& s = pick(sample);
+      if (other_face && s.object == m.object && s.face == m.face) return true;
       if (s.object != first.object || s.shadowed[l] != first.shadowed[l] ||
           s.faces_light[l] != first.faces_light[l] ||
           (!s.transmitted.empty() && s.transmitted[l] != first.transmitted[l]))
@@ -48,21 +65,23 @@ bool boundary_between_centres(const ReferenceTracer& tracer, int x, int y, std::
 // One layer of the frame against the same layer of the reference; `pick` takes that layer's
 // surface out of a reference sample.
 // A mismatch counted: within the band or outside it.
-void settle(Comparison& c, std::size_t p, bool band, float error) {
+void settle(Comparison& c, std::size_t p, bool band, float error, const Mismatch& m) {
   c.mismatched_outside_band += !band;
+  c.outside_band_near_plane_shadowed += !band && m.near_plane_shadowed;
   if (!band) c.max_light_error_outside_band = std::max(c.max_light_error_outside_band, error);
+  if (!band && c.outside_band.size() < kListedMismatches) c.outside_band.push_back(m);
   c.verdict[p] = std::max<std::uint8_t>(c.verdict[p], band ? 1 : 2);
 }
 
 struct Suspect {
-  int x, y;
-  std::size_t light;
+  Mismatch what;
   float error;
 };
 
 template <class Pick>
-void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, int h,
-                   const ReferenceTracer* tracer, Pick pick, const Progress& progress,
+void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, bool glass,
+                   const std::vector<std::vector<std::uint8_t>>& near_plane_shadowed, int w, int h,
+                   const ReferenceSampler* tracer, Pick pick, const Progress& progress,
                    Comparison& c) {
   std::vector<Suspect> suspects;
   const bool sides = !frame.faces_light.empty();  // the frame says which surfaces face the light
@@ -85,6 +104,8 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
         c.max_light_error = std::max(c.max_light_error, error);
         // Within one pixel of a boundary of the reference: of its shadow or the light that
         // reaches it, of the surfaces it sees (silhouettes), or of the part that faces the light.
+        // Or of the face the frame sees, another of the same object (boundary_between_centres).
+        const bool other_face = frame.object[p] == ref.object[p] && frame.face[p] != ref.face[p];
         bool band = false;
         for (int dy = -1; dy <= 1 && !band; ++dy)
           for (int dx = -1; dx <= 1 && !band; ++dx) {
@@ -92,6 +113,8 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             const std::size_t q = static_cast<std::size_t>(qy) * w + qx;
             band = ref.object[q] != ref.object[p] || shadow[q] != shadow[p] ||
+                   (other_face && ref.object[q] == frame.object[p] &&
+                    ref.face[q] == frame.face[p]) ||
                    facing[q] != facing[p] ||
                    (!ref.transmitted.empty() && ref.transmitted[l][q] != ref.transmitted[l][p]);
           }
@@ -104,11 +127,28 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
           continue;
         }
         ++c.mismatched;
+        const Difference difference =
+            !same_surface                                          ? Difference::surface
+            : side && frame.faces_light[l][p] != facing[p]         ? Difference::side
+            : frame.shadowed[l][p] != shadow[p]                    ? Difference::shadow
+                                                                   : Difference::light;
+        const Mismatch what{x,
+                            y,
+                            l,
+                            glass,
+                            !near_plane_shadowed.empty() && near_plane_shadowed[l][p] != 0,
+                            difference,
+                            frame.object[p],
+                            ref.object[p],
+                            frame.face[p],
+                            ref.face[p],
+                            frame.shadowed[l][p] != 0,
+                            shadow[p] != 0};
         if (!band && tracer != nullptr) {
-          suspects.push_back({x, y, l, error});  // looked at between centres below
+          suspects.push_back({what, error});  // looked at between centres below
           continue;
         }
-        settle(c, p, band, error);
+        settle(c, p, band, error, what);
       }
   }
   // Mismatches with no boundary among their neighbours: the reference traced between the
@@ -123,13 +163,13 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, int w, 
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i < range.end(); ++i) {
                           const Suspect& m = suspects[i];
-                          bands[i] = boundary_between_centres(*tracer, m.x, m.y, m.light, pick);
+                          bands[i] = boundary_between_centres(*tracer, m.what, pick);
                         }
                       });
   }
   for (std::size_t i = 0; i < suspects.size(); ++i) {
     const Suspect& m = suspects[i];
-    settle(c, static_cast<std::size_t>(m.y) * w + m.x, bands[i] != 0, m.error);
+    settle(c, static_cast<std::size_t>(m.what.y) * w + m.what.x, bands[i] != 0, m.error, m.what);
   }
 }
 
@@ -142,15 +182,56 @@ Comparison compare(const Frame& frame, const ReferenceFrame& ref, const Progress
   assert(frame.glass.object.empty() == ref.glass.object.empty());
   Comparison c;
   c.verdict.assign(pixels, 0);
-  const ReferenceTracer* tracer = ref.tracer.get();
+  const ReferenceSampler* tracer = ref.tracer.get();
   compare_layer(
-      frame, ref, w, h, tracer,
+      frame, ref, false, ref.near_plane_shadowed, w, h, tracer,
       [](const ReferenceSample& s) -> const ReferenceSurface& { return s; }, progress, c);
   if (!ref.glass.object.empty())
     compare_layer(
-        frame.glass, ref.glass, w, h, tracer,
+        frame.glass, ref.glass, true, ref.near_plane_shadowed, w, h, tracer,
         [](const ReferenceSample& s) -> const ReferenceSurface& { return s.glass; }, progress, c);
   return c;
+}
+
+const char* to_string(Reference r) { return r == Reference::brute ? "brute" : "embree"; }
+
+Expected<Reference> parse_reference(std::string_view name) {
+  if (name == "embree") return Reference::embree;
+  if (name == "brute") return Reference::brute;
+  return make_error("unknown reference '" + std::string(name) + "' (expected embree or brute)");
+}
+
+Expected<ReferenceFrame> reference_frame(const Scene& scene, int width, int height,
+                                         Reference reference, const Progress& progress) {
+  return reference == Reference::brute ? trace_brute_reference(scene, width, height, progress)
+                                       : trace_reference(scene, width, height, progress);
+}
+
+Frame as_frame(const ReferenceFrame& reference) {
+  Frame f;
+  const auto layer = [](const ReferenceLayer& from, SurfaceLayer& to) {
+    to.object = from.object;
+    to.face = from.face;
+    to.shadowed = from.shadowed;
+    to.transmitted = from.transmitted;
+    to.faces_light = from.faces_light;
+  };
+  layer(reference, f);
+  if (!reference.glass.object.empty()) layer(reference.glass, f.glass);
+  f.image.width = reference.width;
+  f.image.height = reference.height;
+  f.image.rgba.assign(std::size_t{4} * reference.width * reference.height, 128);
+  return f;
+}
+
+const char* to_string(Difference d) {
+  switch (d) {
+    case Difference::surface: return "surface";
+    case Difference::side: return "side";
+    case Difference::shadow: return "shadow";
+    case Difference::light: return "light";
+  }
+  return "?";
 }
 
 Image diff_image(const Frame& frame, const Comparison& comparison) {

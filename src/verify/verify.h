@@ -20,8 +20,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
+#include "core/expected.h"
 #include "render/renderer.h"
 #include "trace/reference.h"
 
@@ -31,12 +33,35 @@ namespace shadowvol {
 // (any channel, on the 0..1 scale) and still match, one step of an 8-bit image.
 inline constexpr float kLightTolerance = 1.0f / 255.0f;
 
+// What differs at a mismatched pixel, the first that does of: the surface seen, the side of the
+// light it is taken to be on, the shadow, the light through transparent casters.
+enum class Difference : std::uint8_t { surface, side, shadow, light };
+const char* to_string(Difference d);
+
+// One mismatch outside the band, where a person (or a bisect script) can look.
+struct Mismatch {
+  int x = 0, y = 0;       // pixel, from the top-left corner
+  std::size_t light = 0;  // scene light index
+  bool glass = false;     // on the transparent layer (else the opaque one)
+  bool near_plane_shadowed = false;  // the pixel's near-plane point lies in the light's shadow
+  Difference difference = Difference::shadow;
+  std::int32_t object = -1, reference_object = -1;  // the surfaces each sees
+  std::uint32_t face = 0, reference_face = 0;
+  bool shadowed = false, reference_shadowed = false;
+};
+// Comparison::outside_band lists at most this many, in the order found (light, row, column).
+inline constexpr std::size_t kListedMismatches = 32;
+
 struct Comparison {
   std::size_t pixels_compared = 0;  // over all lights and layers
   // A different mask, a different surface seen, a different side of the light, or different
   // light through transparent casters.
   std::size_t mismatched = 0;
   std::size_t mismatched_outside_band = 0;  // of those, more than a pixel from any boundary
+  // Of those, the ones at pixels whose near-plane point lies in a shadow of the light compared
+  // (ReferenceFrame::near_plane_shadowed): where z-pass, counting from the near plane, must be
+  // wrong, and only there, without a pre-fill (zp+db) or z-fail.
+  std::size_t outside_band_near_plane_shadowed = 0;
   // Scenes with transparent casters (else 0): the largest difference of transmitted light from
   // the reference's, any channel, over the compared pixels that see the surface the reference
   // sees; over all of them, and over those outside the band (the reference even over the
@@ -46,7 +71,24 @@ struct Comparison {
   // Per pixel, the worst over the lights: 0 agrees or not compared, 1 mismatch within the
   // band, 2 mismatch outside it.
   std::vector<std::uint8_t> verdict;
+  // The first kListedMismatches of the mismatches outside the band.
+  std::vector<Mismatch> outside_band;
 };
+
+// Which reference decides: Embree's (trace/), or the brute-force one written apart from it
+// (brute/: every ray against every triangle in double; small scenes), which checks the first.
+enum class Reference : std::uint8_t { embree, brute };
+const char* to_string(Reference r);
+// "embree" or "brute"; an error naming the choices otherwise.
+Expected<Reference> parse_reference(std::string_view name);
+// The reference frame of the scene at width x height, by `reference`.
+Expected<ReferenceFrame> reference_frame(const Scene& scene, int width, int height,
+                                         Reference reference, const Progress& progress = {});
+
+// A reference frame as a rendered frame would hold it (object, face, shadowed, transmitted,
+// faces_light, and a grey image), so that one reference can be compared with another by
+// `compare`, which reads a mask only where the light is faced.
+Frame as_frame(const ReferenceFrame& reference);
 
 // Frame and reference must have the same size and the same lights. The samples between pixel
 // centres are traced in parallel; `progress` hears of them where there are many.

@@ -158,6 +158,43 @@ TEST(LoadMesh, MtlDiffuseAndDissolveAreRead) {
   EXPECT_TRUE(loaded->lights.empty());
 }
 
+// COLLADA's opaque modes as assimp applies them (transparent white, transparency 0.25), and an
+// exporter's "transparency 0" for an opaque material, read as opaque and said.
+TEST(LoadMesh, ColladaTransparencyFollowsItsOpaqueMode) {
+  for (const auto& [file, opacity] : {std::pair{"collada_a_one_quarter.dae", 0.25f},
+                                      std::pair{"collada_a_zero_quarter.dae", 0.75f},
+                                      std::pair{"collada_rgb_one_quarter.dae", 0.25f},
+                                      std::pair{"collada_rgb_zero_quarter.dae", 0.75f},
+                                      std::pair{"collada_rgb_zero_0.dae", 1.0f}}) {
+    SCOPED_TRACE(file);
+    auto loaded = load_mesh(kData / file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    ASSERT_EQ(loaded->materials.size(), 1u);
+    EXPECT_NEAR(loaded->materials[0].material.opacity, opacity, 1e-6f);
+    EXPECT_TRUE(loaded->warnings.empty());
+  }
+}
+
+TEST(LoadMesh, AnExportersNoTransparencyIsReadAsOpaque) {
+  auto dae = load_mesh(kData / "collada_transparency_0.dae");  // <transparency>0, A_ONE
+  ASSERT_TRUE(dae.ok()) << dae.error().message;
+  ASSERT_EQ(dae->materials.size(), 1u);
+  EXPECT_EQ(dae->materials[0].material.opacity, 1.0f);
+  ASSERT_EQ(dae->warnings.size(), 1u);
+  EXPECT_NE(dae->warnings[0].find("material 'mat' is fully transparent as the file is written"),
+            std::string::npos)
+      << dae->warnings[0];
+  auto obj = load_mesh(kData / "transparency_tr.obj");  // Tr 1 and Tr 0.75
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  const FileMaterial* clear = material_named(*obj, "clear_by_tr");
+  const FileMaterial* smoke = material_named(*obj, "smoke_by_tr");
+  ASSERT_TRUE(clear && smoke);
+  EXPECT_EQ(clear->material.opacity, 1.0f);
+  EXPECT_NEAR(smoke->material.opacity, 0.25f, 1e-6f);
+  ASSERT_EQ(obj->warnings.size(), 1u);
+  EXPECT_NE(obj->warnings[0].find("MTL d 0 or Tr 1"), std::string::npos) << obj->warnings[0];
+}
+
 TEST(LoadMesh, AFileWithoutMaterialsGivesNone) {
   auto loaded = load_mesh(kData / "cube_quads.obj");
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;

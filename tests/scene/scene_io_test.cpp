@@ -230,6 +230,23 @@ TEST(SceneFile, OpacityMakesATransparentCaster) {
   EXPECT_TRUE(has_transparent_casters(*scene));
 }
 
+TEST(SceneFile, OpaqueMakesEveryCasterOpaque) {
+  const auto path = write_temp("opaque", R"({
+    "camera": {"position": [0, 2, 5], "target": [0, 0, 0]}, "opaque": true,
+    "lights": [{"position": [4, 5, 0]}],
+    "objects": [{"shape": "box", "color": [1, 0.5, 0], "opacity": 0.25}, {"shape": "ground"}]})");
+  auto scene = load_scene_file(path);
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_FALSE(has_transparent_casters(*scene));
+  EXPECT_EQ(scene->objects[0].material.color, glm::vec3(1.0f, 0.5f, 0.0f));
+  auto bad = load_scene_file(write_temp("opaque_bad", R"({
+    "camera": {"position": [0, 2, 5], "target": [0, 0, 0]}, "opaque": "yes",
+    "lights": [{"position": [4, 5, 0]}], "objects": [{"shape": "box"}]})"));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("scene.opaque: expected true or false"), std::string::npos)
+      << bad.error().message;
+}
+
 // "decompose": each connected part its own object (Laine 2005 §6), vertices that a file repeats
 // per face joined by position: two faces written with six vertices are one part.
 TEST(SceneFile, DecomposeMakesAnObjectPerConnectedPart) {
@@ -369,8 +386,8 @@ INSTANTIATE_TEST_SUITE_P(
             "scene.objects[1].transform.scale: expected 3 numbers [x, y, z], got string"},
         Bad{"unknown_shape", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
               "lights": [{"position": [1,5,1]}], "objects": [{"shape": "teapot"}]})",
-            "scene.objects[0].shape: unknown shape 'teapot' (expected box, open_box, ground, torus "
-            "or bumpy_torus)"},
+            "scene.objects[0].shape: unknown shape 'teapot' (expected box, open_box, ground, torus, "
+            "bumpy_torus, tube or sphere)"},
         Bad{"missing_mesh", R"({"camera": {"position": [0,2,5], "target": [0,0,0]},
               "lights": [{"position": [1,5,1]}], "objects": [{"mesh": "/nonexistent/x.obj"}]})",
             "scene.objects[0].mesh: /nonexistent/x.obj: no such file"},
