@@ -184,9 +184,16 @@ void edge_pieces(const Topology& topo, const VolumeClamp& clamp, bool robust, co
 }
 
 // Where the ray from p away from the light meets the plane depth = t (-inf: p itself).
+// In double: the plane's offset less t, and its products with p, cancel where the mesh's own
+// coordinates lie far from the origin, and float would move the end off its depth.
 inline glm::vec4 segment_end(const glm::vec3& p, const glm::vec4& light, const VolumeClamp& clamp,
                              float t, const glm::vec4& far_plane) {
-  return t == -INFINITY ? glm::vec4(p, 1.0f) : extrude(p, light, clamp.plane_at(t, far_plane));
+  if (t == -INFINITY) return glm::vec4(p, 1.0f);
+  if (t == INFINITY) return extrude(p, light, far_plane);
+  const glm::dvec3 at(p), n(clamp.depth);
+  const glm::dvec3 r = double(light.w) * at - glm::dvec3(light);
+  const double along = glm::dot(n, r), before = glm::dot(n, at) + (double(clamp.depth.w) - t);
+  return glm::vec4(glm::dvec4(along * at - before * r, along));
 }
 
 // The bounds of the intervals of vertex v's leaves strictly inside (begin, end), sorted, once

@@ -356,6 +356,15 @@ void CcShadowVolumes::clamp_continuously(const RenderOptions& options, const Fra
     object_view_[o] = boxes_[o].empty() ? 0 : views_.view_of((boxes_[o].lo + boxes_[o].hi) * 0.5);
   const glm::dmat4 view_proj(plan.view_proj);
   const double width = options.width, height = options.height;
+  // The largest coordinate of the volumes' float arithmetic: an object's own coordinates reach
+  // about its eye-relative box plus its translation, and the model adds the translation again.
+  double float_magnitude = 0.0;
+  for (std::size_t o = 0; o < objects; ++o) {
+    if (boxes_[o].empty()) continue;
+    const double box = std::max(glm::length(boxes_[o].lo), glm::length(boxes_[o].hi));
+    float_magnitude = std::max(
+        float_magnitude, box + 2.0 * glm::length(glm::dvec3(plan.objects[o].model[3])));
+  }
   ContinuousClamping::Stats clamp_stats;
   for (std::size_t view = 0; view < views; ++view) {
     items_.resize(leaves);
@@ -375,7 +384,10 @@ void CcShadowVolumes::clamp_continuously(const RenderOptions& options, const Fra
         farthest = std::max(farthest, item.receiver.z1);
     }
     if (!(nearest <= farthest)) continue;
-    const double margin = kDepthMargin * std::max(farthest - nearest, 1e-30);
+    const double margin =
+        std::max(kDepthMargin * std::max(farthest - nearest, 1e-30),
+                 kFloatSlack * (float_magnitude + std::abs(views_.depth_plane(view).w) +
+                                std::max(std::abs(nearest), std::abs(farthest))));
     // R: the gap's area on the image, from its box in light space (the caster's rectangle swept
     // over the gap's depths), times r. The whole image where it reaches behind the eye.
     auto gap_cost = [&](std::size_t k, double from, double to) {

@@ -58,9 +58,15 @@ class CcShadowVolumes {
   // shorter volumes do not repay (the robots' fill grows by a sixth when they are split).
   static constexpr double kLargeAcross = 8.0, kCellsAcross = 32.0;
   static constexpr std::size_t kMaxSubObjects = 256;
-  // Continuous clamping widens every depth by this much of the view's depth range (a receiver
-  // lies strictly inside its interval; the float planes of the segments err far less).
-  static constexpr double kDepthMargin = 1e-3;
+  // Continuous clamping widens every depth by this much of the view's depth range, so that a
+  // receiver lies strictly inside its interval and a segment reaches well beyond its caster: at a
+  // tenth of this, the short side quads where a caster's first segment ends left single pixels
+  // miscounted by gl's z-fail (the exactness matrix's edge-on parts).
+  static constexpr double kDepthMargin = 1e-2;
+  // And by at least this much of the largest coordinate the segments are built and drawn from
+  // (the meshes' own, their eye-relative boxes and translations, the light's): the float planes
+  // and positions of a mesh whose coordinates lie far from the origin err by that much.
+  static constexpr double kFloatSlack = 1e-6;
 
   // Whether a frame of these options needs the opaque layer's ids first: occlusion culling and
   // discrete clamping take the visible samples.

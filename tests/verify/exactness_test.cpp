@@ -342,11 +342,6 @@ const KnownDefect kKnownDefects[] = {
     {"city_48_frame29_641x479", "soft_zpdb"},
     // One pixel of the corridor's floor by z-pass with the ZP+ pre-fill.
     {"corridor_frame26_480x270", "soft_zpdb"},
-    // CC shadow volumes' clamping of meshes whose own coordinates lie far out, and of tiny ones.
-    {"edge_on_parts_baked_at_1e5", "soft_zfail_cull_occlusion_clamp_both"},
-    {"edge_on_parts_baked_at_1e5", "gl_cpu_auto_cull_frustum_clamp_both"},
-    {"edge_on_parts_scale_1em3_at_1e3", "gl_cpu_auto_cull_frustum_clamp_both"},
-    {"coincident_faces_baked_at_1e5", "gl_cpu_auto_cull_frustum_clamp_both"},
 };
 
 bool known_defect(const std::string& case_name, const std::string& variant) {
