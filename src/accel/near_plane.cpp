@@ -2,33 +2,16 @@
 
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
-#include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
-#include "core/clip_polygon.h"
+#include "raster/raster.h"
 
 namespace shadowvol {
-namespace {
-
-// A cap cut by at most two planes: 3 + 2 vertices.
-constexpr int kMaxPolygon = 5;
-
-// The near plane z = w of clip space, in eye-relative space: N . X = z_clip - w_clip, positive
-// on the eye's side.
-glm::dvec4 near_plane(const glm::mat4& view_proj) {
-  return glm::transpose(glm::dmat4(view_proj)) * glm::dvec4(0.0, 0.0, 1.0, -1.0);
-}
-
-glm::dvec4 affine(const glm::vec4& point) {
-  const glm::dvec4 p(point);
-  return p.w != 0.0 ? p / p.w : p;
-}
-
-}  // namespace
 
 std::array<glm::vec3, 4> near_rectangle(const glm::mat4& inv_view_proj) {
   std::array<glm::vec3, 4> rect;
@@ -64,53 +47,40 @@ bool may_shadow_near_plane(const glm::vec3& centre, float radius,
   return true;
 }
 
-bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_proj) {
-  return glm::dot(near_plane(view_proj), affine(light)) != 0.0;
-}
-
-void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
-                               const glm::vec4& light, const glm::mat4& view_proj,
-                               std::vector<glm::vec4>& triangles,
-                               std::vector<std::int32_t>& weights,
-                               std::vector<std::uint32_t>* parts) {
-  assert(parts == nullptr || light_caps.parts.size() == light_caps.size());
-  const glm::dmat4 to_clip(view_proj);
-  const glm::dvec4 near = near_plane(view_proj);
-  const glm::dvec4 l = affine(light);
-  const double light_side = glm::dot(near, l);
-  assert(light_side != 0.0);  // near_plane_prefill_possible
-  const double s = light_side > 0.0 ? 1.0 : -1.0;
-  const bool point = l.w != 0.0;
-  const glm::dmat4 to_world(model);
-  for (std::size_t c = 0; c < light_caps.size(); ++c) {
-    std::array<glm::dvec4, kMaxPolygon> poly;
-    int n = 0;
-    for (int k = 0; k < kTriangleCorners; ++k)
-      poly[n++] = to_world * glm::dvec4(light_caps.vertices[c * kTriangleCorners + k]);
-    // Only the part on the light's side of the near plane, and not beyond a point light, can
-    // meet a segment from the light to the near plane.
-    clip_polygon(poly, n, [&](const glm::dvec4& v) { return s * glm::dot(near, v); });
-    if (point && n >= 3)  // homogeneous: a clamped volume's caps have w other than 1
-      clip_polygon(poly, n,
-                   [&](const glm::dvec4& v) { return s * (light_side * v.w - glm::dot(near, v)); });
-    if (n < 3) continue;
-    // Where the line from the light through v meets the near plane: (N.v) l - (N.l) v, a linear
-    // map of v. Its w has the sign of -s; negated by s, every vertex lands in front of the eye.
-    glm::vec4 projected[kMaxPolygon];
-    for (int i = 0; i < n; ++i) {
-      const glm::dvec4 on_near = -s * (glm::dot(near, poly[i]) * l - light_side * poly[i]);
-      glm::dvec4 clip_space = to_clip * on_near;
-      clip_space.z = 0.5 * clip_space.w;  // counts, not depth: keep it inside the depth range
-      projected[i] = glm::vec4(clip_space);
-    }
-    // Seen from the eye, the projection turns the way the cap turns seen from the light exactly
-    // when both lie on the same side of the near plane (s = 1).
-    const std::int32_t weight = light_caps.weights[c] * mirror * static_cast<std::int32_t>(s);
-    for (int i = 1; i + 1 < n; ++i) {
-      triangles.insert(triangles.end(), {projected[0], projected[i], projected[i + 1]});
-      weights.push_back(weight);
-      if (parts != nullptr) parts->push_back(light_caps.parts[c]);
-    }
+void append_near_plane_prefill(std::span<const glm::vec4> triangles,
+                               std::span<const std::int32_t> weights,
+                               std::span<const std::uint32_t> parts, std::vector<glm::vec4>& out,
+                               std::vector<std::int32_t>& out_weights,
+                               std::vector<std::uint32_t>* out_parts,
+                               std::vector<glm::vec4>& apexes) {
+  assert(triangles.size() == 3 * weights.size());
+  assert(parts.empty() || (parts.size() == weights.size() && out_parts != nullptr));
+  // Drawn with z between 0 and w, or w and 0 behind the eye, so that the near plane, the first
+  // plane the clipper cuts by, leaves the fan whole; x, y and w, all the other planes and the
+  // snapping read, stay the clipper's own.
+  auto drawn = [](glm::vec4 v) {
+    v.z = v.w >= 0.0f ? 0.5f * v.w : 1.5f * v.w;
+    return v;
+  };
+  constexpr glm::vec4 kUnset(0.0f);
+  apexes.clear();
+  const std::size_t first = out_weights.size();
+  for (std::size_t t = 0; t < weights.size(); ++t) {
+    glm::vec4 leaves, returns;
+    if (!raster::near_plane_cut(&triangles[3 * t], leaves, returns)) continue;
+    const std::uint32_t part = parts.empty() ? 0 : parts[t];
+    if (apexes.size() <= part) apexes.resize(part + 1, kUnset);
+    for (const glm::vec4& v : {leaves, returns})  // in view, so that the fan stays small
+      if (apexes[part] == kUnset && v.w > 0.0f && std::abs(v.x) <= v.w && std::abs(v.y) <= v.w)
+        apexes[part] = v;
+    out.insert(out.end(), {kUnset, drawn(leaves), drawn(returns)});
+    out_weights.push_back(-weights[t]);
+    if (out_parts != nullptr) out_parts->push_back(part);
+  }
+  for (std::size_t f = first; f < out_weights.size(); ++f) {
+    const std::uint32_t part = parts.empty() ? 0 : (*out_parts)[f];
+    // Where no cut point is in view, the near plane's centre.
+    out[3 * f] = drawn(apexes[part] == kUnset ? glm::vec4(0.0f, 0.0f, 1.0f, 1.0f) : apexes[part]);
   }
 }
 

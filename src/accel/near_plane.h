@@ -5,15 +5,17 @@
 // where the near-plane point of the pixel lies outside every volume. GPU Gems 3 §11.2.3 tests
 // each caster's bounds against the near-plane rectangle and takes z-fail where it may shadow it
 // (may_shadow_near_plane). ZP+ instead gives each pixel the count of the volume at that point
-// first: the caster's light caps, projected from the light onto the near plane, cover exactly the
-// near-plane points whose segment to the light crosses them. Drawn with raster::CountRule::prefill
-// (no depth test: front faces add their weight, back faces subtract it), they leave that count in
-// every pixel, and the z-pass draw of the sides adds the rest. Laine 2005 §3.3 applies it in the
-// pixels that use z-pass only.
+// first, and the z-pass draw of the sides adds the rest; Laine 2005 §3.3 applies it in the pixels
+// that use z-pass only. Hornus et al. project the caster's light caps from the light onto the near
+// plane; here the pre-fill is drawn from the volume's own cut by the near plane instead, made of
+// the very edges the clipper gives the sides, so that it agrees with their draw on every pixel.
+// Drawn with raster::CountRule::prefill (no depth test: front faces add their weight, back faces
+// subtract it), it leaves that count in every pixel.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -36,24 +38,24 @@ std::array<glm::vec3, 4> near_rectangle(const glm::mat4& inv_view_proj);
 bool may_shadow_near_plane(const glm::vec3& centre, float radius,
                            const std::array<glm::vec3, 4>& rect, const glm::vec4& light);
 
-// Whether the pre-fill can be made for this light: not when it lies in the near plane itself,
-// where the projection degenerates; such a volume is drawn by z-fail.
-bool near_plane_prefill_possible(const glm::vec4& light, const glm::mat4& view_proj);
-
-// Appends the pre-fill of one volume: its light caps (object space, homogeneous with w > 0, so
-// that a clamped volume's dark caps, which lie among the receivers, may be given too; `model`
-// takes them to eye-relative space, `mirror` = -1 where it mirrors), seen from `light`
-// (eye-relative) on the near plane of `view_proj` (core/projection.h). The triangles are in clip
-// space with their depth set to 1/2 (they carry counts, not depth); the weights are signed so that
-// a front face adds what the volume gains along the segment from the light; `parts`, where not
-// null, gets the part of each triangle's cap (light_caps.parts must be filled), since each part of
-// a volume counted by its own split plane needs its own pre-fill. Each cap is first cut to the
-// piece that can cross such a segment: on the light's side of the near plane and, for a point
-// light, no farther from it than the light. Needs near_plane_prefill_possible(light, view_proj).
-void append_near_plane_prefill(const PrimitiveList& light_caps, const glm::mat4& model, int mirror,
-                               const glm::vec4& light, const glm::mat4& view_proj,
-                               std::vector<glm::vec4>& triangles,
-                               std::vector<std::int32_t>& weights,
-                               std::vector<std::uint32_t>* parts = nullptr);
+// The pre-fill of one closed volume, from its own clip-space triangles (3 corners each): every
+// triangle of it, drawn by the count pass or not, with its weight as drawn and, where `parts` is
+// not empty, its part (each part of a volume counted by its own split plane is closed and needs
+// its own pre-fill). A near-plane point's count in the volume is the winding number around it of
+// the volume's cut by the near plane, and that cut is made of the edges the rasterizer's clipper
+// adds to the triangles it cuts (raster::near_plane_cut); a fan of triangles from one point of the
+// cut to each edge, weighted by minus its triangle's weight, winds that number. The apex is a point
+// the eye sees (w > 0), so that the fan winds 0 behind the eye, where no volume reaches. Since its
+// edges are the clipper's own, bit for bit, a pixel that a side's draw loses to the near plane the
+// pre-fill counts, and the reverse: z-pass from the pre-fill counts exactly what the whole volume
+// drawn without a depth test would (float planes of two computations of one line would disagree
+// on the pixels they pass between). Appends the fan (depths kept inside the range: it carries
+// counts), its weights and, where `out_parts` is not null, their parts; `apexes` is scratch.
+void append_near_plane_prefill(std::span<const glm::vec4> triangles,
+                               std::span<const std::int32_t> weights,
+                               std::span<const std::uint32_t> parts, std::vector<glm::vec4>& out,
+                               std::vector<std::int32_t>& out_weights,
+                               std::vector<std::uint32_t>* out_parts,
+                               std::vector<glm::vec4>& apexes);
 
 }  // namespace shadowvol

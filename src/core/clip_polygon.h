@@ -9,6 +9,14 @@
 
 namespace shadowvol {
 
+// Where the edge from `in` (distance d_in >= 0) to `out` (d_out < 0) crosses the plane, computed
+// from the inside vertex whichever way a polygon runs the edge.
+template <class Vertex, class Scalar>
+inline Vertex plane_crossing(const Vertex& in, const Vertex& out, Scalar d_in, Scalar d_out) {
+  const Scalar t = d_in / (d_in - d_out);
+  return in + (out - in) * t;
+}
+
 // Keeps the part of the convex polygon v[0 .. n) where distance(vertex) >= 0 (NaN counts as
 // outside) and returns whether anything was cut. Each new vertex is computed from its edge's
 // inside vertex towards the outside one, whichever way the polygon runs the edge: two polygons
@@ -32,8 +40,7 @@ bool clip_polygon(std::array<Vertex, N>& v, int& n, Distance&& distance) {
     if (in_i) out[m++] = v[i];
     if (in_i != in_j) {
       const int in = in_i ? i : j, outside = in_i ? j : i;
-      const Scalar t = d[in] / (d[in] - d[outside]);
-      out[m++] = v[in] + (v[outside] - v[in]) * t;
+      out[m++] = plane_crossing(v[in], v[outside], d[in], d[outside]);
     }
     assert(m <= static_cast<int>(N));
   }

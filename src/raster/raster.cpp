@@ -951,6 +951,20 @@ void count_pass(Target& target, std::span<const glm::vec4> triangles,
 
 }  // namespace
 
+bool near_plane_cut(const glm::vec4* triangle, glm::vec4& leaves, glm::vec4& returns) {
+  float d[3];
+  for (int k = 0; k < 3; ++k) d[k] = plane_distance(0, triangle[k]);
+  bool left = false, came_back = false;
+  for (int i = 0; i < 3; ++i) {  // clip_polygon's walk, its crossings computed as it does
+    const int j = (i + 1) % 3;
+    const bool in_i = d[i] >= 0.0f, in_j = d[j] >= 0.0f;
+    if (in_i && !in_j) leaves = plane_crossing(triangle[i], triangle[j], d[i], d[j]), left = true;
+    if (!in_i && in_j)
+      returns = plane_crossing(triangle[j], triangle[i], d[j], d[i]), came_back = true;
+  }
+  return left && came_back;
+}
+
 void draw_counts(Target& target, std::span<const glm::vec4> triangles,
                  std::span<const std::int32_t> weights, CountRule rule, Counters& counters,
                  DepthBounds bounds, const SplitPlane& split, const ScreenStrip& strip) {

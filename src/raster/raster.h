@@ -238,6 +238,12 @@ struct ScreenStrip {
   bool whole() const { return lo == -INFINITY && hi == INFINITY; }
 };
 
+// Where every draw's clipper cuts a clip-space triangle by the near plane (the first plane it
+// clips by): the edge the cut adds to the triangle, from where its boundary leaves the drawn side
+// to where it comes back, so running the way the corners run; both the very vertices the clipper
+// makes, bit for bit. False where the near plane does not cut it.
+bool near_plane_cut(const glm::vec4* triangle, glm::vec4& leaves, glm::vec4& returns);
+
 // Count pass: each triangle changes the count of the pixels it covers by its signed weight
 // (weights[t], one per triangle), by the rule above, in one write; depth is not written. Tiles
 // whose depth bounds prove that no pixel can pass the rule's test, or whose depths all lie

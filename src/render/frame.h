@@ -28,8 +28,7 @@ enum class Method : std::uint8_t {
   automatic,  // per object: z-pass unless its volume may reach the near plane (GPU Gems 3 §11.2.3)
   // Per tile: z-pass or z-fail by the side of a split plane through the volume (Laine 2005;
   // software backend only). Where a volume may reach the near plane, its z-pass tiles start from
-  // the near-plane pre-fill (ZP+); where no pre-fill can be made (the light in the near plane's
-  // plane), the volume takes z-fail whole.
+  // the near-plane pre-fill (ZP+).
   split_plane,
   // Z-pass made exact by the near-plane pre-fill of ZP+ (Hornus et al. 2005) where a volume
   // may reach the near plane; with depth bounds, Laine 2005's first baseline (software only).

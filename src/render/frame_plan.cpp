@@ -187,7 +187,6 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
         caster_shapes(*scene.objects[o].topology, plan.objects[o].model, options.split_parts);
   for (std::size_t l = 0; l < lights; ++l) {
     const glm::vec4 light = plan.lights[l];
-    const bool can_prefill = prefills && near_plane_prefill_possible(light, plan.view_proj);
     for (std::size_t o = 0; o < objects; ++o) {
       const SceneObject& object = scene.objects[o];
       const ObjectPlan& op = plan.objects[o];
@@ -200,14 +199,13 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
       const bool reaches_near =
           per_object &&
           may_shadow_near_plane(centre, glm::length(op.hi - op.lo) * 0.5f, near_rect, light);
-      const bool zfail = options.method == Method::zfail || (reaches_near && !can_prefill);
-      v.prefill = reaches_near && can_prefill;
+      const bool zfail = options.method == Method::zfail || (reaches_near && !prefills);
+      v.prefill = reaches_near && prefills;
       v.part_zfail = zfail && options.method == Method::automatic
                          ? parts_reaching_near(*object.topology, op.model, near_rect, light)
                          : std::vector<std::uint8_t>{};
       for (const std::uint8_t z : v.part_zfail) stats.parts_zpass += !z;
-      // Under split_plane, a split plane per caster shape; a volume drawn by z-fail whole (the
-      // light in the near plane) takes none.
+      // Under split_plane, a split plane per caster shape.
       v.split.resize(zfail || shapes.empty() ? 0 : shapes[o].size());
       for (std::size_t p = 0; p < v.split.size(); ++p) {
         const Shape& shape = shapes[o][p];

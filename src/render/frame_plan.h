@@ -177,10 +177,9 @@ struct FramePlan {
 // near-plane rectangle in its shadow (GPU Gems 3 §11.2.3), and then, for an object of several
 // parts, only for the parts whose own spheres may (VolumePlan::part_zfail): one mesh of a whole
 // city is not forced to z-fail. `spsv` gives every object a split
-// plane, and `zp+db` draws by z-pass; both pre-fill where `auto` would take z-fail, and take
-// z-fail where the light lies in the near plane, which no pre-fill can see. A volume is culled
-// where its object casts no shadows or lies wholly beyond the light's range. Counts the objects
-// of each method, and the volumes out of range, into stats.
+// plane, and `zp+db` draws by z-pass; both pre-fill where `auto` would take z-fail. A volume is
+// culled where its object casts no shadows or lies wholly beyond the light's range. Counts the
+// objects of each method, and the volumes out of range, into stats.
 void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& plan,
                 FrameStats& stats);
 FramePlan plan_frame(const Scene& scene, const RenderOptions& options, FrameStats& stats);

@@ -291,13 +291,20 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
     prefill_tris_.clear();
     prefill_weights_.clear();
     prefill_keys_.clear();
-    // Every cap the segment from the light to the near plane may cross: a clamped volume's dark
-    // caps too.
-    for (const PrimitiveList* caps : {&v.light_caps, &v.dark_caps})
-      if (caps == &v.light_caps || vp.dark_caps_everywhere())
-        append_near_plane_prefill(*caps, op.model, sign, plan.lights[l], plan.view_proj,
-                                  prefill_tris_, prefill_weights_,
-                                  by_part ? &prefill_keys_ : nullptr);
+    // From the whole volume: what the count pass draws, and for a while the caps it leaves out.
+    const std::size_t counted = weights_.size();
+    if (!vp.counts_caps) {
+      if (!vp.light_caps_everywhere)
+        clip_volume(v.light_caps, kTriangleCorners, mvp, sign, tris_, weights_);
+      if (!vp.dark_caps_everywhere())
+        clip_volume(v.dark_caps, kTriangleCorners, mvp, sign, tris_, weights_);
+    }
+    prefill_parts_.clear();
+    for (const std::uint32_t key : keys_) prefill_parts_.push_back(key / 2);  // keys: 2 part + cap
+    append_near_plane_prefill(tris_, weights_, prefill_parts_, prefill_tris_, prefill_weights_,
+                              splits.empty() ? nullptr : &prefill_keys_, prefill_apexes_);
+    tris_.resize(3 * counted);
+    weights_.resize(counted);
   }
   // Each draw once per strip of discrete clamping (or once), and measured for its fill where
   // asked (CountRule::fill: the pixels it touches with the depth test off).
@@ -336,7 +343,6 @@ void SoftBackend::count_volume(std::size_t l, std::size_t o) {
   } else {
     volume_groups_.group(tris_, weights_, keys_, 2 * splits.size());
     if (vp.prefill) {
-      if (!by_part) prefill_keys_.assign(prefill_weights_.size(), 0);
       prefill_groups_.group(prefill_tris_, prefill_weights_, prefill_keys_, splits.size());
     }
     for (std::size_t p = 0; p < splits.size(); ++p) {

@@ -113,6 +113,8 @@ class SoftBackend final : public FrameBackend {
   std::vector<std::uint8_t> answers_;  // per query of the frame: visible
   Layer layer_ = Layer::opaque;        // of the depth pass begun
   std::vector<std::uint32_t> keys_, prefill_keys_;
+  std::vector<std::uint32_t> prefill_parts_;  // the pre-fill's input: each triangle's part
+  std::vector<glm::vec4> prefill_apexes_;     // and its scratch
   Grouped volume_groups_, prefill_groups_;
   std::vector<glm::vec3> log_light_, eye_log_;
   std::vector<float> opaque_depth_;  // with transparent casters: the opaque layer's depths

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <random>
@@ -55,31 +55,46 @@ const std::vector<Variant>& full_set() {
       {"soft_zfail", Backend::soft, {}, method(Method::zfail)},
       {"soft_auto", Backend::soft, {}, method(Method::automatic)},
       {"soft_spsv", Backend::soft, {}, method(Method::split_plane)},
-      {"soft_spsv_laine", Backend::soft, {},
+      {"soft_spsv_laine",
+       Backend::soft,
+       {},
        [](RenderOptions& o) {
          o.method = Method::split_plane;
          o.split_planes = SplitPlanes::laine;
        }},
       {"soft_zpdb", Backend::soft, {}, method(Method::zpass_prefill)},
-      {"soft_auto_bounded", Backend::soft, {},
+      {"soft_auto_bounded",
+       Backend::soft,
+       {},
        [](RenderOptions& o) { o.extrusion = Extrusion::bounded; }},
-      {"soft_auto_cull_frustum", Backend::soft, {}, [](RenderOptions& o) { o.cull = Cull::frustum; }},
-      {"soft_zfail_cull_occlusion_clamp_both", Backend::soft, {},
+      {"soft_auto_cull_frustum",
+       Backend::soft,
+       {},
+       [](RenderOptions& o) { o.cull = Cull::frustum; }},
+      {"soft_zfail_cull_occlusion_clamp_both",
+       Backend::soft,
+       {},
        [](RenderOptions& o) {
          o.method = Method::zfail;
          o.cull = Cull::occlusion;
          o.clamp = Clamp::both;
          o.slices = 8;
        }},
-      {"soft_auto_clamp_continuous", Backend::soft, {},
+      {"soft_auto_clamp_continuous",
+       Backend::soft,
+       {},
        [](RenderOptions& o) { o.clamp = Clamp::continuous; }},
-      {"soft_spsv_clamp_discrete", Backend::soft, {},
+      {"soft_spsv_clamp_discrete",
+       Backend::soft,
+       {},
        [](RenderOptions& o) {
          o.method = Method::split_plane;
          o.clamp = Clamp::discrete;
          o.slices = 8;
        }},
-      {"soft_auto_occlusion_both", Backend::soft, {},
+      {"soft_auto_occlusion_both",
+       Backend::soft,
+       {},
        [](RenderOptions& o) { o.occlusion = Occlusion::both; }},
       {"gl_cpu_zpass", Backend::gl, kCpu, method(Method::zpass)},
       {"gl_cpu_zfail", Backend::gl, kCpu, method(Method::zfail)},
@@ -121,10 +136,10 @@ const std::vector<Variant>& core_set() {
   static const std::vector<Variant> kSet = [] {
     std::vector<Variant> set;
     for (const Variant& v : full_set())
-      for (const char* name : {"soft_zpass", "soft_zfail", "soft_auto", "soft_spsv", "soft_zpdb",
-                               "soft_zfail_cull_occlusion_clamp_both", "gl_cpu_zpass",
-                               "gl_cpu_zfail", "gl_cpu_auto", "gl_gpu_auto", "gl_vs_zfail",
-                               "gl_cpu_auto_cull_frustum_clamp_both"})
+      for (const char* name :
+           {"soft_zpass", "soft_zfail", "soft_auto", "soft_spsv", "soft_zpdb",
+            "soft_zfail_cull_occlusion_clamp_both", "gl_cpu_zpass", "gl_cpu_zfail", "gl_cpu_auto",
+            "gl_gpu_auto", "gl_vs_zfail", "gl_cpu_auto_cull_frustum_clamp_both"})
         if (std::string(v.name) == name) set.push_back(v);
     return set;
   }();
@@ -229,7 +244,7 @@ Mesh coincident() {
   Mesh m = testing::box({-8, 0, -8}, {8, 6, 8});
   const std::vector<std::uint32_t> faces(m.indices.begin(), m.indices.end());
   m.indices.insert(m.indices.end(), faces.begin(), faces.end());  // every face twice
-  Mesh other = testing::box({-8, 0, -8}, {8, 6, 8});                // and a second copy
+  Mesh other = testing::box({-8, 0, -8}, {8, 6, 8});              // and a second copy
   append_mesh(m, other);
   return m;
 }
@@ -305,23 +320,26 @@ std::vector<Case> cases() {
       out.push_back({at + size_name(w, h), builtin_at(name, frame), w, h, Set::core});
     }
   }
-  const std::vector<std::pair<std::string, Mesh (*)()>> meshes = {
-      {"thin_tube", thin_tube},         {"folded_sheet", folded_sheet},
-      {"folded_faces", folded_faces},   {"edge_on_parts", edge_on_parts},
-      {"slivers", slivers},             {"soup", soup},
-      {"coincident_faces", coincident}};
-  const std::vector<Placement> placements = {
-      {"at_origin", 0.0, 1.0f, false}, {"at_1e3", 1e3, 1.0f, false},
-      {"at_1e5", 1e5, 1.0f, false},    {"at_1e7", 1e7, 1.0f, false},
-      {"baked_at_1e5", 1e5, 1.0f, true}, {"scale_1em3", 0.0, 1e-3f, false},
-      {"scale_1em3_at_1e3", 1e3, 1e-3f, false}};
+  const std::vector<std::pair<std::string, Mesh (*)()>> meshes = {{"thin_tube", thin_tube},
+                                                                  {"folded_sheet", folded_sheet},
+                                                                  {"folded_faces", folded_faces},
+                                                                  {"edge_on_parts", edge_on_parts},
+                                                                  {"slivers", slivers},
+                                                                  {"soup", soup},
+                                                                  {"coincident_faces", coincident}};
+  const std::vector<Placement> placements = {{"at_origin", 0.0, 1.0f, false},
+                                             {"at_1e3", 1e3, 1.0f, false},
+                                             {"at_1e5", 1e5, 1.0f, false},
+                                             {"at_1e7", 1e7, 1.0f, false},
+                                             {"baked_at_1e5", 1e5, 1.0f, true},
+                                             {"scale_1em3", 0.0, 1e-3f, false},
+                                             {"scale_1em3_at_1e3", 1e3, 1e-3f, false}};
   for (const auto& [name, make] : meshes)
     for (const Placement& at : placements)
-      out.push_back({sanitized(name + "_" + at.name),
-                     [name = name, make = make, at]() -> Expected<Scene> {
-                       return placed(name, make(), at);
-                     },
-                     480, 270, full ? Set::full : Set::core});
+      out.push_back(
+          {sanitized(name + "_" + at.name),
+           [name = name, make = make, at]() -> Expected<Scene> { return placed(name, make(), at); },
+           480, 270, full ? Set::full : Set::core});
   return out;
 }
 
@@ -336,20 +354,14 @@ const KnownDefect kKnownDefects[] = {
     // A pixel of car0 at an edge lit on both sides, counted in shadow by the software count pass.
     {"night_street_641x479", "*soft*"},
     {"night_street_frame29_641x479", "*soft*"},
-    // Shadow pixels where the near plane lies in a building's shadow, by the methods that start
-    // from the ZP+ pre-fill of the near plane, which must be exact there.
-    {"city_48_frame29_641x479", "soft_spsv"},
-    {"city_48_frame29_641x479", "soft_zpdb"},
-    // One pixel of the corridor's floor by z-pass with the ZP+ pre-fill.
-    {"corridor_frame26_480x270", "soft_zpdb"},
 };
 
 bool known_defect(const std::string& case_name, const std::string& variant) {
   for (const KnownDefect& d : kKnownDefects) {
     const std::string v = d.variant;
-    const bool variant_matches =
-        v.front() == '*' ? variant.find(v.substr(1, v.size() - 2)) != std::string::npos
-                         : variant == v;
+    const bool variant_matches = v.front() == '*'
+                                     ? variant.find(v.substr(1, v.size() - 2)) != std::string::npos
+                                     : variant == v;
     if (case_name == d.case_name && variant_matches) return true;
   }
   return false;
@@ -369,8 +381,7 @@ TEST_P(Exactness, EveryMethodMatchesTheReference) {
     // Where the eye is in a shadow, z-pass is wrong almost everywhere, and each of those pixels
     // is traced again between centres (a thousand samples): checked to fail once, small.
     const bool zpass = std::string(v.name).find("zpass") != std::string::npos;
-    if (eye_in_shadow && zpass &&
-        (v.backend != Backend::soft || c.width * c.height > 480 * 270))
+    if (eye_in_shadow && zpass && (v.backend != Backend::soft || c.width * c.height > 480 * 270))
       continue;
     RenderOptions options;
     options.width = c.width, options.height = c.height;
@@ -405,7 +416,9 @@ TEST_P(Exactness, EveryMethodMatchesTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Matrix, Exactness, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return info.param.name;
+                         });
 
 }  // namespace
 }  // namespace shadowvol
