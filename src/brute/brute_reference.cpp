@@ -171,6 +171,28 @@ class BruteReference final : public ReferenceSampler {
         [this](double wx, double wy) { return glm::normalize(direction(wx, wy)); });
   }
 
+  ReferenceSurface on_face_plane(double x, double y, std::int32_t object,
+                                 std::uint32_t face) const override {
+    ReferenceSurface out;
+    out.distance = kInfinity;
+    if (object < 0 || static_cast<std::size_t>(object) >= objects_.size()) return out;
+    const Object& o = objects_[static_cast<std::size_t>(object)];
+    if (face >= o.triangles.size()) return out;
+    const Triangle& tri = o.triangles[face];
+    const glm::dvec3 through = direction(x, y);
+    const double length = glm::length(through);
+    const glm::dvec3 dir = through / length;
+    const glm::dvec3 n = glm::cross(tri.e1, tri.e2);
+    const double t = glm::dot(n, tri.a) / glm::dot(n, dir);
+    if (!(t >= near_ * length && std::isfinite(t))) return out;
+    out.faces_light.assign(lights_.size(), 0);
+    out.shadowed.assign(lights_.size(), 0);
+    out.grazing.assign(lights_.size(), 0);
+    out.transmitted.assign(glass_ ? lights_.size() : 0, glm::vec3(0.0f));
+    light(object, face, t, dir, out);
+    return out;
+  }
+
  private:
   // Through window point (x, y): forward plus the offsets on a plane at distance 1, so that the
   // point at parameter s lies s in front of the eye.

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -238,21 +239,32 @@ bool triangle_nearer_within(const glm::dvec3 (&c)[3], double x, double y, double
   return false;
 }
 
-bool ReferenceTracer::face_nearer_within(double x, double y, std::int32_t object,
-                                         std::uint32_t face, double distance) const {
-  const State& s = *state_;
+namespace {
+
+// The eye-relative corners of face `face` (one the scene has) of geometry `object`; false where
+// there is no such geometry.
+bool face_corners(RTCScene scene, std::int32_t object, std::uint32_t face, glm::dvec3 (&c)[3]) {
   if (object < 0) return false;
-  RTCGeometry g = rtcGetGeometry(s.scene.get(), static_cast<unsigned>(object));
+  RTCGeometry g = rtcGetGeometry(scene, static_cast<unsigned>(object));
   if (g == nullptr) return false;
   const auto* v = static_cast<const float*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
   const auto* i =
       static_cast<const unsigned*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_INDEX, 0));
   if (v == nullptr || i == nullptr) return false;
-  glm::dvec3 c[3];
   for (int k = 0; k < 3; ++k) {
     const float* p = v + 3 * std::size_t{i[3 * std::size_t{face} + k]};
     c[k] = {p[0], p[1], p[2]};
   }
+  return true;
+}
+
+}  // namespace
+
+bool ReferenceTracer::face_nearer_within(double x, double y, std::int32_t object,
+                                         std::uint32_t face, double distance) const {
+  const State& s = *state_;
+  glm::dvec3 c[3];
+  if (!face_corners(s.scene.get(), object, face, c)) return false;
   const glm::dmat4 view_proj = glm::inverse(s.inv_view_proj);
   return triangle_nearer_within(
       c, x, y, distance,
@@ -264,6 +276,33 @@ bool ReferenceTracer::face_nearer_within(double x, double y, std::int32_t object
       [&](double wx, double wy) { return ray_direction(s.inv_view_proj, s.width, s.height, wx, wy); });
 }
 
+ReferenceSurface ReferenceTracer::on_face_plane(double x, double y, std::int32_t object,
+                                                std::uint32_t face) const {
+  const State& s = *state_;
+  ReferenceSurface out;
+  out.distance = std::numeric_limits<double>::infinity();
+  glm::dvec3 c[3];
+  if (!face_corners(s.scene.get(), object, face, c)) return out;
+  const glm::dvec3 dir = ray_direction(s.inv_view_proj, s.width, s.height, x, y);
+  glm::dvec3 n = glm::normalize(glm::cross(c[1] - c[0], c[2] - c[0]));
+  const double t = glm::dot(n, c[0]) / glm::dot(n, dir);
+  if (!(t >= double(s.near) && std::isfinite(t))) return out;
+  if (glm::dot(n, dir) > 0.0) n = -n;  // the side the eye sees
+  out.object = object, out.face = face, out.distance = t;
+  light_surface(dir * t, n, out);
+  return out;
+}
+
+namespace {
+// The direction from `pos` to a light and its distance (infinite for a directional light).
+std::pair<glm::dvec3, double> toward(const glm::dvec4& light, const glm::dvec3& pos) {
+  if (light.w == 0.0)
+    return {glm::normalize(glm::dvec3(light)), std::numeric_limits<double>::infinity()};
+  const glm::dvec3 to_light = glm::dvec3(light) / light.w - pos;
+  return {glm::normalize(to_light), glm::length(to_light)};
+}
+}  // namespace
+
 std::vector<std::uint8_t> ReferenceTracer::near_plane_shadowed(double x, double y) const {
   const State& s = *state_;
   std::vector<std::uint8_t> out(s.lights.size(), 0);
@@ -271,12 +310,7 @@ std::vector<std::uint8_t> ReferenceTracer::near_plane_shadowed(double x, double 
       s.inv_view_proj * glm::dvec4(x / s.width * 2.0 - 1.0, 1.0 - y / s.height * 2.0, 1.0, 1.0);
   const glm::dvec3 pos = glm::dvec3(on_near) / on_near.w;
   for (std::size_t l = 0; l < s.lights.size(); ++l) {
-    const glm::dvec4& light = s.lights[l];
-    const glm::dvec3 to_light =
-        light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
-    const double distance =
-        light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
-    const glm::dvec3 d = glm::normalize(to_light);
+    const auto [d, distance] = toward(s.lights[l], pos);
     RTCRay shadow = shadow_ray(pos, pos, d, distance);
     // Transparent casters shadow here too: any caster's volume counts.
     GlassContext context{{}, &s.none_transparent, &s.not_casting, {}};
@@ -286,6 +320,50 @@ std::vector<std::uint8_t> ReferenceTracer::near_plane_shadowed(double x, double 
     out[l] = shadow.tfar < 0.0f;
   }
   return out;
+}
+
+// Light at the point `pos` of a surface with normal n (turned towards the eye), per light:
+// whether the surface faces it, whether an opaque surface blocks it, and (with transparent
+// casters) the product of the transmittances of the transparent surfaces on the way.
+// A surface of an object that receives no shadows gets every light that reaches it; one beyond
+// a light's range gets none of it (not compared, as a surface facing away).
+void ReferenceTracer::light_surface(const glm::dvec3& pos, const glm::dvec3& n,
+                                    ReferenceSurface& out) const {
+  const State& s = *state_;
+  const bool receives = !s.not_receiving[static_cast<std::size_t>(out.object)];
+  const std::size_t lights = s.lights.size();
+  out.faces_light.assign(lights, 0);
+  out.shadowed.assign(lights, 0);
+  out.grazing.assign(lights, 0);
+  out.transmitted.assign(s.glass ? lights : 0, glm::vec3(0.0f));
+  for (std::size_t l = 0; l < lights; ++l) {
+    const auto [d, distance] = toward(s.lights[l], pos);
+    const double cosine = glm::dot(n, d);
+    out.grazing[l] = std::abs(cosine) < kGrazingCosine;
+    if (cosine <= 0.0) continue;  // faces away: not compared
+    if (std::isfinite(s.ranges[l]) && !(distance < s.ranges[l])) continue;  // beyond the range
+    out.faces_light[l] = 1;
+    if (!receives) {
+      if (s.glass) out.transmitted[l] = glm::vec3(1.0f);
+      continue;
+    }
+    // Start a hair off the surface, towards the light's side, to leave its own triangle: a
+    // hair of its distance from the eye, far above float's steps there and, whatever the
+    // scene's scale, far below its features (DESIGN.md "Numerics").
+    RTCRay shadow = shadow_ray(pos + n * (1e-5 * glm::length(pos)), pos, d, distance);
+    GlassContext context{{}, &s.transparent, &s.not_casting, {}};
+    rtcInitIntersectContext(&context.context);
+    if (s.glass || s.filtered) context.context.filter = see_through_glass;
+    rtcOccluded1(s.scene.get(), &context.context, &shadow);
+    out.shadowed[l] = shadow.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+    if (!s.glass || out.shadowed[l]) continue;
+    // Each surface once: a filter may see one triangle more than once (spatial splits).
+    std::sort(context.hits.begin(), context.hits.end());
+    context.hits.erase(std::unique(context.hits.begin(), context.hits.end()), context.hits.end());
+    glm::dvec3 passed(1.0);
+    for (const GlassContext::Hit& hit : context.hits) passed *= s.transmittance[hit.geometry];
+    out.transmitted[l] = glm::vec3(passed);
+  }
 }
 
 ReferenceSample ReferenceTracer::sample(double x, double y) const {
@@ -310,52 +388,6 @@ ReferenceSample ReferenceTracer::sample(double x, double y) const {
   hit.ray.mask = 0xffffffffu;
   hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(s.scene.get(), &context.context, &hit);
-  // Light at the point `pos` of a surface with normal n (turned towards the eye), per light:
-  // whether the surface faces it, whether an opaque surface blocks it, and (with transparent
-  // casters) the product of the transmittances of the transparent surfaces on the way.
-  // A surface of an object that receives no shadows gets every light that reaches it; one beyond
-  // a light's range gets none of it (not compared, as a surface facing away).
-  auto light_surface = [&s](const glm::dvec3& pos, const glm::dvec3& n, ReferenceSurface& out) {
-    const bool receives = !s.not_receiving[static_cast<std::size_t>(out.object)];
-    const std::size_t lights = s.lights.size();
-    out.faces_light.assign(lights, 0);
-    out.shadowed.assign(lights, 0);
-    out.grazing.assign(lights, 0);
-    out.transmitted.assign(s.glass ? lights : 0, glm::vec3(0.0f));
-    for (std::size_t l = 0; l < lights; ++l) {
-      const glm::dvec4& light = s.lights[l];
-      const glm::dvec3 to_light =
-          light.w != 0.0 ? glm::dvec3(light) / light.w - pos : glm::dvec3(light);
-      const double distance =
-          light.w != 0.0 ? glm::length(to_light) : std::numeric_limits<double>::infinity();
-      const glm::dvec3 d = glm::normalize(to_light);
-      const double cosine = glm::dot(n, d);
-      out.grazing[l] = std::abs(cosine) < kGrazingCosine;
-      if (cosine <= 0.0) continue;  // faces away: not compared
-      if (std::isfinite(s.ranges[l]) && !(distance < s.ranges[l])) continue;  // beyond the range
-      out.faces_light[l] = 1;
-      if (!receives) {
-        if (s.glass) out.transmitted[l] = glm::vec3(1.0f);
-        continue;
-      }
-      // Start a hair off the surface, towards the light's side, to leave its own triangle: a
-      // hair of its distance from the eye, far above float's steps there and, whatever the
-      // scene's scale, far below its features (DESIGN.md "Numerics").
-      RTCRay shadow = shadow_ray(pos + n * (1e-5 * glm::length(pos)), pos, d, distance);
-      GlassContext context{{}, &s.transparent, &s.not_casting, {}};
-      rtcInitIntersectContext(&context.context);
-      if (s.glass || s.filtered) context.context.filter = see_through_glass;
-      rtcOccluded1(s.scene.get(), &context.context, &shadow);
-      out.shadowed[l] = shadow.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
-      if (!s.glass || out.shadowed[l]) continue;
-      // Each surface once: a filter may see one triangle more than once (spatial splits).
-      std::sort(context.hits.begin(), context.hits.end());
-      context.hits.erase(std::unique(context.hits.begin(), context.hits.end()), context.hits.end());
-      glm::dvec3 passed(1.0);
-      for (const GlassContext::Hit& hit : context.hits) passed *= s.transmittance[hit.geometry];
-      out.transmitted[l] = glm::vec3(passed);
-    }
-  };
   // A surface at distance t along the ray, with geometric normal ng.
   auto surface = [&](unsigned geometry, unsigned primitive, float t, const glm::vec3& ng,
                      ReferenceSurface& layer) {

@@ -72,6 +72,12 @@ class ReferenceSampler {
   // at a silhouette of an object over itself, seen edge-on: thinner than any sampling).
   virtual bool face_nearer_within(double x, double y, std::int32_t object, std::uint32_t face,
                                   double distance) const = 0;
+  // The light where the ray through (x, y) meets the plane of face `face` of object `object`,
+  // as sample() would give it had that face continued there unhidden (object -1 where the ray
+  // meets the plane behind the near plane, or not at all): the shadow on a surface beyond a
+  // crease of its object, where another face of it stands on it (a cabin on a car's body).
+  virtual ReferenceSurface on_face_plane(double x, double y, std::int32_t object,
+                                         std::uint32_t face) const = 0;
   // Empty, or the error met while tracing.
   virtual std::string error() const { return {}; }
 };
@@ -96,12 +102,16 @@ class ReferenceTracer final : public ReferenceSampler {
   std::vector<std::uint8_t> near_plane_shadowed(double x, double y) const override;
   bool face_nearer_within(double x, double y, std::int32_t object, std::uint32_t face,
                           double distance) const override;
+  ReferenceSurface on_face_plane(double x, double y, std::int32_t object,
+                                 std::uint32_t face) const override;
   // Empty, or the error Embree has reported while tracing.
   std::string error() const override;
 
  private:
   struct State;
   explicit ReferenceTracer(std::unique_ptr<State> state);
+  // The light at eye-relative point pos of out.object, whose normal n is turned to the eye.
+  void light_surface(const glm::dvec3& pos, const glm::dvec3& n, ReferenceSurface& out) const;
   std::unique_ptr<State> state_;
 };
 

@@ -33,6 +33,12 @@ float light_error(const std::vector<std::vector<glm::vec3>>& a,
 // a face turned from the eye ends at its neighbour's edge and a rasterizer's vertices, snapped
 // to its subpixel grid, may leave a hair of it over the centre. (Between objects, the change of
 // object is the boundary.)
+//
+// Or, where another face of the reference's object stands on its surface within the square (a
+// car's cabin on its body: a concave crease), whether the shadow on that surface's plane,
+// continued under the other face, changes: the shadow's edge is the crease, hidden but within
+// the pixel, and a volume's side through it meets the surface there at the depth of its own
+// rounding.
 template <class Pick>
 bool boundary_between_centres(const ReferenceSampler& tracer, const Mismatch& m, Pick pick) {
   const int x = m.x, y = m.y;
@@ -47,6 +53,14 @@ bool boundary_between_centres(const ReferenceSampler& tracer, const Mismatch& m,
     if (tracer.face_nearer_within(x + 0.5, y + 0.5, m.object, m.face, pick(centre).distance))
       return true;
   }
+  const bool shadow = m.difference == Difference::shadow;
+  const auto shadow_changes_beyond_crease = [&](int i, int j) {
+    const ReferenceSurface continued =
+        tracer.on_face_plane(x + 0.5 + double(i) / kSteps, y + 0.5 + double(j) / kSteps,
+                             m.reference_object, m.reference_face);
+    return continued.object >= 0 && continued.faces_light[l] &&
+           bool(continued.shadowed[l]) != m.reference_shadowed;
+  };
   const ReferenceSample first_sample = at(-kSteps, -kSteps);
   const ReferenceSurface& first = pick(first_sample);
   for (int j = -kSteps; j <= kSteps; ++j)
@@ -54,6 +68,9 @@ bool boundary_between_centres(const ReferenceSampler& tracer, const Mismatch& m,
       const ReferenceSample sample = at(i, j);
       const ReferenceSurface& s = pick(sample);
       if (other_face && s.object == m.object && s.face == m.face) return true;
+      if (shadow && s.object == m.reference_object && s.face != m.reference_face &&
+          shadow_changes_beyond_crease(i, j))
+        return true;
       if (s.object != first.object || s.shadowed[l] != first.shadowed[l] ||
           s.faces_light[l] != first.faces_light[l] ||
           (!s.transmitted.empty() && s.transmitted[l] != first.transmitted[l]))
