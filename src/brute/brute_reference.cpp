@@ -110,12 +110,7 @@ class BruteReference final : public ReferenceSampler {
 
   ReferenceSample sample(double x, double y) const override {
     ReferenceSample out;
-    const std::size_t lights = lights_.size();
-    out.faces_light.assign(lights, 0);
-    out.shadowed.assign(lights, 0);
-    out.grazing.assign(lights, 0);
-    out.transmitted.assign(glass_ ? lights : 0, glm::vec3(0.0f));
-    out.distance = kInfinity;
+    see_nothing(out);
     out.glass = out;
     const glm::dvec3 through = direction(x, y);
     const double length = glm::length(through);
@@ -174,7 +169,7 @@ class BruteReference final : public ReferenceSampler {
   ReferenceSurface on_face_plane(double x, double y, std::int32_t object,
                                  std::uint32_t face) const override {
     ReferenceSurface out;
-    out.distance = kInfinity;
+    see_nothing(out);
     if (object < 0 || static_cast<std::size_t>(object) >= objects_.size()) return out;
     const Object& o = objects_[static_cast<std::size_t>(object)];
     if (face >= o.triangles.size()) return out;
@@ -185,15 +180,21 @@ class BruteReference final : public ReferenceSampler {
     const glm::dvec3 n = glm::cross(tri.e1, tri.e2);
     const double t = glm::dot(n, tri.a) / glm::dot(n, dir);
     if (!(t >= near_ * length && std::isfinite(t))) return out;
-    out.faces_light.assign(lights_.size(), 0);
-    out.shadowed.assign(lights_.size(), 0);
-    out.grazing.assign(lights_.size(), 0);
-    out.transmitted.assign(glass_ ? lights_.size() : 0, glm::vec3(0.0f));
     light(object, face, t, dir, out);
     return out;
   }
 
  private:
+  // No surface, every light's answer unlit, for light() to fill in.
+  void see_nothing(ReferenceSurface& out) const {
+    const std::size_t lights = lights_.size();
+    out.faces_light.assign(lights, 0);
+    out.shadowed.assign(lights, 0);
+    out.grazing.assign(lights, 0);
+    out.transmitted.assign(glass_ ? lights : 0, glm::vec3(0.0f));
+    out.distance = kInfinity;
+  }
+
   // Through window point (x, y): forward plus the offsets on a plane at distance 1, so that the
   // point at parameter s lies s in front of the eye.
   glm::dvec3 direction(double x, double y) const {

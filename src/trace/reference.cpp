@@ -258,6 +258,14 @@ bool face_corners(RTCScene scene, std::int32_t object, std::uint32_t face, glm::
   return true;
 }
 
+// The direction from `pos` to a light and its distance (infinite for a directional light).
+std::pair<glm::dvec3, double> toward(const glm::dvec4& light, const glm::dvec3& pos) {
+  if (light.w == 0.0)
+    return {glm::normalize(glm::dvec3(light)), std::numeric_limits<double>::infinity()};
+  const glm::dvec3 to_light = glm::dvec3(light) / light.w - pos;
+  return {glm::normalize(to_light), glm::length(to_light)};
+}
+
 }  // namespace
 
 bool ReferenceTracer::face_nearer_within(double x, double y, std::int32_t object,
@@ -292,16 +300,6 @@ ReferenceSurface ReferenceTracer::on_face_plane(double x, double y, std::int32_t
   light_surface(dir * t, n, out);
   return out;
 }
-
-namespace {
-// The direction from `pos` to a light and its distance (infinite for a directional light).
-std::pair<glm::dvec3, double> toward(const glm::dvec4& light, const glm::dvec3& pos) {
-  if (light.w == 0.0)
-    return {glm::normalize(glm::dvec3(light)), std::numeric_limits<double>::infinity()};
-  const glm::dvec3 to_light = glm::dvec3(light) / light.w - pos;
-  return {glm::normalize(to_light), glm::length(to_light)};
-}
-}  // namespace
 
 std::vector<std::uint8_t> ReferenceTracer::near_plane_shadowed(double x, double y) const {
   const State& s = *state_;
