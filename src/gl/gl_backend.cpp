@@ -24,12 +24,27 @@
 namespace shadowvol::gl {
 namespace {
 
-// One vertex of an uploaded CPU volume: the position (w = 0 at infinity) and its triangle's
-// weight.
+// One vertex of an uploaded CPU volume: the position (w = 0 at infinity), its triangle's
+// weight, and its side's corners for the count passes' depth of slivers (glsl::kCountPrelude).
 struct VolumeVertex {
   glm::vec4 position;
-  std::int32_t weight;
+  std::int32_t weight = 0;
+  glm::vec4 side[4] = {};  // a, a_far, b, b_far; 0 on a cap
 };
+
+// The attributes of VolumeVertex from binding 0 of `vao`: position, weight, the side's corners.
+void bind_volume_vertices(GLuint vao, GLuint buffer) {
+  glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(VolumeVertex));
+  glVertexArrayAttribFormat(vao, 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribIFormat(vao, 1, 1, GL_INT, offsetof(VolumeVertex, weight));
+  for (GLuint c = 0; c < 4; ++c)
+    glVertexArrayAttribFormat(vao, 3 + c, 4, GL_FLOAT, GL_FALSE,
+                              GLuint(offsetof(VolumeVertex, side) + c * sizeof(glm::vec4)));
+  for (GLuint a : {0u, 1u, 3u, 4u, 5u, 6u}) {
+    glVertexArrayAttribBinding(vao, a, 0);
+    glEnableVertexArrayAttrib(vao, a);
+  }
+}
 
 // Grows a buffer to hold `bytes` where it holds less (new storage, its contents lost), and fills
 // it with `data` (none: left as it is).
@@ -200,7 +215,13 @@ void GlBackend::VolumeUpload::upload(const VolumeBuffer& volume, const VolumePla
       std::vector<VolumeVertex>& out = by_rule_and_weight[{by_zfail, w}];
       const glm::vec4* v = &list.vertices[p * static_cast<std::size_t>(corners)];
       for (int t = 0; t < per; ++t)
-        for (int k = 0; k < 3; ++k) out.push_back({v[kQuadTriangles[3 * t + k]], w});
+        for (int k = 0; k < 3; ++k) {
+          VolumeVertex vertex{v[kQuadTriangles[3 * t + k]], w};
+          if (corners == kQuadCorners)  // (u, u_far, v_far, v): long edges u-u_far, v-v_far
+            vertex.side[0] = v[0], vertex.side[1] = v[1], vertex.side[2] = v[3],
+            vertex.side[3] = v[2];
+          out.push_back(vertex);
+        }
     }
   };
   add(volume.sides, kQuadCorners, true);
@@ -225,13 +246,7 @@ void GlBackend::VolumeUpload::upload(const VolumeBuffer& volume, const VolumePla
       buffer.get(),
       static_cast<GLsizeiptr>(std::max<std::size_t>(all.size(), 1) * sizeof(VolumeVertex)),
       all.empty() ? nullptr : all.data(), 0);
-  glVertexArrayVertexBuffer(vao.get(), 0, buffer.get(), 0, sizeof(VolumeVertex));
-  glVertexArrayAttribFormat(vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribIFormat(vao.get(), 1, 1, GL_INT, offsetof(VolumeVertex, weight));
-  for (GLuint a : {0u, 1u}) {
-    glVertexArrayAttribBinding(vao.get(), a, 0);
-    glEnableVertexArrayAttrib(vao.get(), a);
-  }
+  bind_volume_vertices(vao.get(), buffer.get());
 }
 
 // The draw buffers of a framebuffer with the ids at attachment 0 and the colour at 1.
@@ -307,10 +322,11 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
   using namespace glsl;
   // The count passes' fragment shaders, without and with the strips' fragment test.
   const std::string version = "#version 450 core\n";
-  const std::string count[2] = {version + kCountFragment,
-                                version + "#define STRIPS\n" + kCountFragment};
-  const std::string light_map[2] = {version + kLightMapFragment,
-                                    version + "#define STRIPS\n" + kLightMapFragment};
+  const std::string strips_defined = version + "#define STRIPS\n";
+  const std::string count[2] = {version + kCountPrelude + kCountFragment,
+                                strips_defined + kCountPrelude + kCountFragment};
+  const std::string light_map[2] = {version + kCountPrelude + kLightMapFragment,
+                                    strips_defined + kCountPrelude + kLightMapFragment};
   struct Build {
     Object* out;
     const char* name;
@@ -980,10 +996,9 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
   }
 }
 
-void GlBackend::set_viewport_uniform(bool strips) {
-  if (strips)
-    glUniform2f(glsl::kViewport, static_cast<float>(in_->options.width),
-                static_cast<float>(in_->options.height));
+void GlBackend::set_viewport_uniform() {
+  glUniform2f(glsl::kViewport, static_cast<float>(in_->options.width),
+              static_cast<float>(in_->options.height));
 }
 
 // The pixels a volume's draw touches with the depth test off (CC shadow volumes §4's fill), and
@@ -1027,13 +1042,7 @@ VolumeCosts GlBackend::measure_volume_costs() {
   glNamedBufferStorage(buffer.get(),
                        static_cast<GLsizeiptr>(vertices.size() * sizeof(VolumeVertex)),
                        vertices.data(), 0);
-  glVertexArrayVertexBuffer(vao.get(), 0, buffer.get(), 0, sizeof(VolumeVertex));
-  glVertexArrayAttribFormat(vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribIFormat(vao.get(), 1, 1, GL_INT, offsetof(VolumeVertex, weight));
-  for (GLuint a : {0u, 1u}) {
-    glVertexArrayAttribBinding(vao.get(), a, 0);
-    glEnableVertexArrayAttrib(vao.get(), a);
-  }
+  bind_volume_vertices(vao.get(), buffer.get());
   glUseProgram(volume_cpu_[0].get());
   const glm::mat4 identity(1.0f);  // the triangles are in clip space already
   glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(identity));
@@ -1116,7 +1125,7 @@ void GlBackend::begin_mask(std::size_t l) {
   glUseProgram(cpu_  ? volume_cpu_[strips].get()
                : gs_ ? volume_gpu_[strips].get()
                      : volume_vs_[strips].get());
-  set_viewport_uniform(strips);
+  set_viewport_uniform();
 }
 
 // Kim et al. Eq. 3: each count adds its caster's log transmittance, in float32 with additive
@@ -1134,7 +1143,7 @@ void GlBackend::begin_light_map(std::size_t l) {
   glUseProgram(cpu_  ? light_map_cpu_[strips].get()
                : gs_ ? light_map_gpu_[strips].get()
                      : light_map_vs_[strips].get());
-  set_viewport_uniform(strips);
+  set_viewport_uniform();
 }
 
 struct GlBackend::Batch {
@@ -1202,19 +1211,16 @@ void GlBackend::count_volumes(std::size_t l, std::span<const std::uint32_t> obje
                          0);
     b.instance_count = GLuint(ids.size());
   }
-  glVertexArrayVertexBuffer(b.vao.get(), 0, b.vertices.get(), 0, sizeof(VolumeVertex));
-  glVertexArrayAttribFormat(b.vao.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribIFormat(b.vao.get(), 1, 1, GL_INT, offsetof(VolumeVertex, weight));
+  bind_volume_vertices(b.vao.get(), b.vertices.get());
   glVertexArrayVertexBuffer(b.vao.get(), 1, b.instance_ids.get(), 0, sizeof(GLuint));
   glVertexArrayAttribIFormat(b.vao.get(), 2, 1, GL_UNSIGNED_INT, 0);
   glVertexArrayBindingDivisor(b.vao.get(), 1, 1);
-  for (GLuint a : {0u, 1u, 2u}) {
-    glVertexArrayAttribBinding(b.vao.get(), a, a == 2 ? 1 : 0);
-    glEnableVertexArrayAttrib(b.vao.get(), a);
-  }
+  glVertexArrayAttribBinding(b.vao.get(), 2, 1);
+  glEnableVertexArrayAttrib(b.vao.get(), 2);
   GLint program = 0;
   glGetIntegerv(GL_CURRENT_PROGRAM, &program);
   glUseProgram(into_light_map_ ? light_map_batch_.get() : volume_batch_.get());
+  set_viewport_uniform();
   if (into_light_map_) {  // every object of one call is of one group
     const auto group = static_cast<std::size_t>(plan.objects[objects.front()].glass_group);
     glUniform3fv(glsl::kPerCount, 1, glm::value_ptr(plan.glass[group].log_transmittance));

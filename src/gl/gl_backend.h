@@ -132,8 +132,8 @@ class GlBackend final : public FrameBackend {
   // Adds the fill and the stencil writes of one draw of a volume (draw_all: every primitive
   // once) into the frame's stats (RenderOptions::count_fill).
   void measure_fill(bool zpass, const std::function<void()>& draw_all);
-  // With the strips' programs, their viewport uniform.
-  void set_viewport_uniform(bool strips);
+  // The count programs' viewport uniform (strips, slivers: glsl::kCountPrelude).
+  void set_viewport_uniform();
   void scissor(std::size_t light);  // enables the scissor test on the light's reach
   MeshBuffers& mesh_buffers(const SceneObject& object);
 

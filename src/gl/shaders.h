@@ -256,10 +256,13 @@ void main() {
 inline constexpr const char* kVolumeVertex = SHADOWVOL_GLSL_PRELUDE R"(
 layout(location = 0) in vec4 position;  // w = 0 at infinity
 layout(location = 1) in int weight;
+layout(location = 3) in vec4 side[4];  // its side's a, a_far, b, b_far; 0 on a cap
 flat out int primitive_weight;
+flat out vec4 side_corners[4];
 invariant gl_Position;
 void main() {
   primitive_weight = weight;
+  for (int i = 0; i < 4; ++i) side_corners[i] = to_clip(side[i]);
   gl_Position = to_clip(position);
 }
 )";
@@ -274,10 +277,13 @@ layout(std430, binding = 3) readonly buffer Objects { Object objects[]; };
 layout(location = 0) in vec4 position;  // w = 0 at infinity
 layout(location = 1) in int weight;
 layout(location = 2) in uint object;
+layout(location = 3) in vec4 side[4];  // its side's a, a_far, b, b_far; 0 on a cap
 flat out int primitive_weight;
+flat out vec4 side_corners[4];
 invariant gl_Position;
 void main() {
   primitive_weight = weight * objects[object].mirror.x;
+  for (int i = 0; i < 4; ++i) side_corners[i] = objects[object].mvp * side[i];
   precise vec4 c = objects[object].mvp * position;
   gl_Position = c;
 }
@@ -305,6 +311,7 @@ void main() {
   "layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted\n"    \
   "layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity\n"   \
   "flat out int primitive_weight;\n"                                                               \
+  "flat out vec4 side_corners[4];  // a side's corners (kCountPrelude); 0 on a cap\n"             \
   "invariant gl_Position;\n"                                                                       \
   "\n"                                                                                             \
   "int facing(vec4 a, vec4 b, vec4 c) {\n"                                                         \
@@ -349,15 +356,18 @@ layout(triangles_adjacency) in;
 layout(triangle_strip, max_vertices = 18) out;
 in vec4 object_position[];
 )" SHADOWVOL_GLSL_VOLUME R"(
+vec4 corners[4];  // of the side being emitted (0 for a cap)
 // A vertex of the mesh (index i of the input), with the vertex shader's clip position.
 void emit_vertex(int i, int weight) {
   primitive_weight = weight;
+  side_corners = corners;
   gl_Position = gl_in[i].gl_Position;
   EmitVertex();
 }
 // The extrusion of vertex i onto the far plane.
 void emit_far(int i, int weight) {
   primitive_weight = weight;
+  side_corners = corners;
   gl_Position = to_clip(extrude(object_position[i]));
   EmitVertex();
 }
@@ -368,6 +378,7 @@ void main() {
   for (int i = 0; i < 6; ++i) p[i] = object_position[i];
   int w = face_weight(p[0], p[2], p[4]), dark = dark_cap_weight(p[0], p[2], p[4], w);
   if (w == 0 && dark == 0) return;
+  corners = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
   if (caps != 0) {
     // The light cap keeps its own vertex order (the depth pass's), whatever its sign: a
     // reversed triangle may rasterize to other depths. Hence the separate kEmitNegative draw.
@@ -398,6 +409,8 @@ void main() {
     // The side quad (a, a_far, b_far, b) of weight w, as a strip a, a_far, b, b_far.
     if (emit == 0 && w < 0) { int t = a; a = b; b = t; }
     int weight = emit == 0 ? 1 : w;
+    corners = vec4[4](gl_in[a].gl_Position, to_clip(extrude(p[a])), gl_in[b].gl_Position,
+                      to_clip(extrude(p[b])));
     emit_vertex(a, weight);
     emit_far(a, weight);
     emit_vertex(b, weight);
@@ -429,6 +442,7 @@ void main() {
   // weight, and whether the primitive is drawn at all.
   int vertex = 0, weight = 0;
   bool far = false, drawn = false;
+  side_corners = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
   if (role < 3) {  // the light cap, in the depth pass's vertex order
     drawn = w != 0 && caps != 0 && (emit == 2 || (emit == 0 && w > 0) || (emit == 1 && w < 0));
     vertex = 2 * role;
@@ -453,55 +467,109 @@ void main() {
     vertex = s < 2 ? a : b;
     far = s == 1 || s == 3;
     weight = emit == 0 ? 1 : w;
+    if (drawn)
+      side_corners = vec4[4](to_clip(p[a]), to_clip(extrude(p[a])), to_clip(p[b]),
+                             to_clip(extrude(p[b])));
   }
   primitive_weight = weight;
   gl_Position = !drawn ? vec4(0.0) : to_clip(far ? extrude(p[vertex]) : p[vertex]);
 }
 )";
 
-// What the count passes' fragment shaders share: with STRIPS, the fragment test of a strip of the
-// image, s = strip_across . ndc within strip_bounds (raster::ScreenStrip).
-#define SHADOWVOL_GLSL_STRIP                                                 \
-  "#ifdef STRIPS\n"                                                          \
-  "layout(location = 22) uniform vec2 strip_across;\n"                       \
-  "layout(location = 23) uniform vec2 strip_bounds;\n"                       \
-  "layout(location = 24) uniform vec2 viewport;\n"                           \
-  "#endif\n"                                                                 \
-  "void keep_to_strip() {\n"                                                 \
-  "#ifdef STRIPS\n"                                                          \
-  "  float s = dot(strip_across, gl_FragCoord.xy / viewport * 2.0 - 1.0);\n" \
-  "  if (s < strip_bounds.x || s > strip_bounds.y) discard;\n"               \
-  "#endif\n"                                                                 \
-  "}\n"
+// What the count passes' fragment shaders share. With STRIPS, the fragment test of a strip of the
+// image, s = strip_across . ndc within strip_bounds (raster::ScreenStrip). And a side's depth where
+// it is a sliver, both long edges within half a pixel of the fragment: seen edge-on, its depth
+// plane, fitted to vertices snapped to the subpixel grid (llvmpipe: 1/256 pixel), may miss its
+// depth there by the whole range (1.0 for 1e-4 on a city, where three sides of one silhouette
+// vertex meet on one line behind a receiver), and the count is off by its weight. There its depth
+// is kept between those of its long edges where a line across them through the fragment meets
+// them; elsewhere it is the rasterizer's. Every stage that draws volumes hands on the corners.
+// Its text follows a "#version" line (and a "#define STRIPS" one for the strips' variant).
+inline constexpr const char* kCountPrelude = R"(
+layout(location = 24) uniform vec2 viewport;
+#ifdef STRIPS
+layout(location = 22) uniform vec2 strip_across;
+layout(location = 23) uniform vec2 strip_bounds;
+#endif
+void keep_to_strip() {
+#ifdef STRIPS
+  float s = dot(strip_across, gl_FragCoord.xy / viewport * 2.0 - 1.0);
+  if (s < strip_bounds.x || s > strip_bounds.y) discard;
+#endif
+}
+
+flat in vec4 side_corners[4];  // clip space: a, a_far, b, b_far; all 0 on a cap
+
+// The line through clip points a and b (b may lie at infinity), in homogeneous window
+// coordinates.
+vec3 window_line(vec4 a, vec4 b) {
+  vec2 half_size = 0.5 * viewport;
+  return cross(vec3((a.xy + a.w) * half_size, a.w), vec3((b.xy + b.w) * half_size, b.w));
+}
+
+// The window depth at window point q of that line, kept to the segment; false where the point
+// lies behind the eye.
+bool depth_on(vec4 a, vec4 b, vec2 q, out float depth) {
+  vec2 half_size = 0.5 * viewport;
+  vec3 ha = vec3((a.xy + a.w) * half_size, a.w), d = vec3((b.xy + b.w) * half_size, b.w) - ha;
+  vec2 num = q * ha.z - ha.xy, den = d.xy - q * d.z;
+  float t = clamp(abs(den.x) > abs(den.y) ? num.x / den.x : num.y / den.y, 0.0, 1.0);
+  float w = a.w + t * (b.w - a.w);
+  depth = (a.z + t * (b.z - a.z)) / w;
+  return w > 0.0;
+}
+
+// The fragment's depth: on a sliver, kept between the long edges' depths where the line through
+// the fragment across the first edge meets each (the fragment lies between them, so its true
+// depth does too).
+float volume_depth() {
+  const float kSliver = 0.5;  // pixels from the fragment to either edge
+  float z = gl_FragCoord.z;
+  vec3 u = window_line(side_corners[0], side_corners[1]);
+  vec3 v = window_line(side_corners[2], side_corners[3]);
+  float lu = length(u.xy), lv = length(v.xy);
+  if (!(lu > 0.0 && lv > 0.0)) return z;  // a cap, or no side
+  vec2 p = gl_FragCoord.xy, n = u.xy / lu;
+  float to_u = dot(u, vec3(p, 1.0)) / lu, across = dot(v.xy, n);
+  if (!(abs(across) > 0.5 * lv)) return z;  // the edges are far from parallel: no sliver
+  float to_v = -dot(v, vec3(p, 1.0)) / across;
+  if (!(abs(to_u) < kSliver && abs(to_v) < kSliver)) return z;
+  float zu, zv;
+  if (!depth_on(side_corners[0], side_corners[1], p - to_u * n, zu) ||
+      !depth_on(side_corners[2], side_corners[3], p + to_v * n, zv))
+    return z;
+  return clamp(clamp(z, min(zu, zv), max(zu, zv)), 0.0, 1.0);
+}
+)";
 
 // Counts: additive target (R32F, blended ONE + ONE) or, with colour writes off, the stencil.
 // z-pass adds a front face's weight, z-fail subtracts it (kRuleSign), back faces the opposite.
-// Its text follows a "#version" line (and a "#define STRIPS" one for the strips' variant).
-inline constexpr const char* kCountFragment = SHADOWVOL_GLSL_STRIP R"(
+// After kCountPrelude.
+inline constexpr const char* kCountFragment = R"(
 flat in int primitive_weight;
 layout(location = 3) uniform float rule_sign;
 layout(location = 0) out float count;
 void main() {
   keep_to_strip();
+  gl_FragDepth = volume_depth();
   count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
 }
 )";
 
 // The log light map of transparent casters (RGBA32F, blended ONE + ONE; Kim et al. §3, Eq. 3):
-// each count, as above, times its caster's log transmittance (per_count). After a "#version".
-inline constexpr const char* kLightMapFragment = SHADOWVOL_GLSL_STRIP R"(
+// each count, as above, times its caster's log transmittance (per_count). After kCountPrelude.
+inline constexpr const char* kLightMapFragment = R"(
 flat in int primitive_weight;
 layout(location = 3) uniform float rule_sign;
 layout(location = 19) uniform vec3 per_count;
 layout(location = 0) out vec4 log_light;
 void main() {
   keep_to_strip();
+  gl_FragDepth = volume_depth();
   float count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
   log_light = vec4(count * per_count, 0.0);
 }
 )";
-
-#undef SHADOWVOL_GLSL_STRIP
 
 // The frame out: lit colour or background, to sRGB.
 inline constexpr const char* kFullscreenVertex = R"(#version 450 core

@@ -90,6 +90,20 @@ void settle(Comparison& c, std::size_t p, bool band, float error, const Mismatch
   c.verdict[p] = std::max<std::uint8_t>(c.verdict[p], band ? 1 : 2);
 }
 
+// Whether the near-plane point of pixel (x, y), or of a neighbour, lies in a shadow of light l:
+// plain z-pass is wrong where the near plane is in a shadow, and that region's edge is sampled
+// at the centres as any other boundary is, so a pixel beside it is within its band.
+bool near_plane_shadowed_around(const std::vector<std::vector<std::uint8_t>>& near,
+                                std::size_t l, int x, int y, int w, int h) {
+  if (near.empty()) return false;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int qx = x + dx, qy = y + dy;
+      if (qx >= 0 && qy >= 0 && qx < w && qy < h && near[l][std::size_t(qy) * w + qx]) return true;
+    }
+  return false;
+}
+
 struct Suspect {
   Mismatch what;
   float error;
@@ -153,7 +167,7 @@ void compare_layer(const SurfaceLayer& frame, const ReferenceLayer& ref, bool gl
                             y,
                             l,
                             glass,
-                            !near_plane_shadowed.empty() && near_plane_shadowed[l][p] != 0,
+                            near_plane_shadowed_around(near_plane_shadowed, l, x, y, w, h),
                             difference,
                             frame.object[p],
                             ref.object[p],

@@ -43,7 +43,8 @@ struct Mismatch {
   int x = 0, y = 0;       // pixel, from the top-left corner
   std::size_t light = 0;  // scene light index
   bool glass = false;     // on the transparent layer (else the opaque one)
-  bool near_plane_shadowed = false;  // the pixel's near-plane point lies in the light's shadow
+  // The near-plane point of the pixel, or of a neighbour, lies in the light's shadow.
+  bool near_plane_shadowed = false;
   Difference difference = Difference::shadow;
   std::int32_t object = -1, reference_object = -1;  // the surfaces each sees
   std::uint32_t face = 0, reference_face = 0;
@@ -58,9 +59,10 @@ struct Comparison {
   // light through transparent casters.
   std::size_t mismatched = 0;
   std::size_t mismatched_outside_band = 0;  // of those, more than a pixel from any boundary
-  // Of those, the ones at pixels whose near-plane point lies in a shadow of the light compared
-  // (ReferenceFrame::near_plane_shadowed): where z-pass, counting from the near plane, must be
-  // wrong, and only there, without a pre-fill (zp+db) or z-fail.
+  // Of those, the ones at pixels whose near-plane point, or a neighbour's, lies in a shadow of
+  // the light compared (ReferenceFrame::near_plane_shadowed): where z-pass, counting from the
+  // near plane, must be wrong, or is within a pixel of it, and only there, without a pre-fill
+  // (zp+db) or z-fail.
   std::size_t outside_band_near_plane_shadowed = 0;
   // Scenes with transparent casters (else 0): the largest difference of transmitted light from
   // the reference's, any channel, over the compared pixels that see the surface the reference
