@@ -500,18 +500,17 @@ void keep_to_strip() {
 
 flat in vec4 side_corners[4];  // clip space: a, a_far, b, b_far; all 0 on a cap
 
+// Clip point c in homogeneous window coordinates (at infinity where c.w = 0).
+vec3 to_window(vec4 c) { return vec3((c.xy + c.w) * (0.5 * viewport), c.w); }
+
 // The line through clip points a and b (b may lie at infinity), in homogeneous window
 // coordinates.
-vec3 window_line(vec4 a, vec4 b) {
-  vec2 half_size = 0.5 * viewport;
-  return cross(vec3((a.xy + a.w) * half_size, a.w), vec3((b.xy + b.w) * half_size, b.w));
-}
+vec3 window_line(vec4 a, vec4 b) { return cross(to_window(a), to_window(b)); }
 
 // The window depth at window point q of that line, kept to the segment; false where the point
 // lies behind the eye.
 bool depth_on(vec4 a, vec4 b, vec2 q, out float depth) {
-  vec2 half_size = 0.5 * viewport;
-  vec3 ha = vec3((a.xy + a.w) * half_size, a.w), d = vec3((b.xy + b.w) * half_size, b.w) - ha;
+  vec3 ha = to_window(a), d = to_window(b) - ha;
   vec2 num = q * ha.z - ha.xy, den = d.xy - q * d.z;
   float t = clamp(abs(den.x) > abs(den.y) ? num.x / den.x : num.y / den.y, 0.0, 1.0);
   float w = a.w + t * (b.w - a.w);
