@@ -29,7 +29,8 @@ namespace {
 struct VolumeVertex {
   glm::vec4 position;
   std::int32_t weight = 0;
-  glm::vec4 side[4] = {};  // a, a_far, b, b_far; 0 on a cap
+  glm::vec4 side[4] = {};   // a, a_far, b, b_far; 0 on a cap
+  std::int32_t second = 0;  // of its side's triangles (kQuadTriangles): the sliver test's
 };
 
 // The attributes of VolumeVertex from binding 0 of `vao`: position, weight, the side's corners.
@@ -40,7 +41,8 @@ void bind_volume_vertices(GLuint vao, GLuint buffer) {
   for (GLuint c = 0; c < 4; ++c)
     glVertexArrayAttribFormat(vao, 3 + c, 4, GL_FLOAT, GL_FALSE,
                               GLuint(offsetof(VolumeVertex, side) + c * sizeof(glm::vec4)));
-  for (GLuint a : {0u, 1u, 3u, 4u, 5u, 6u}) {
+  glVertexArrayAttribIFormat(vao, 7, 1, GL_INT, offsetof(VolumeVertex, second));
+  for (GLuint a : {0u, 1u, 3u, 4u, 5u, 6u, 7u}) {
     glVertexArrayAttribBinding(vao, a, 0);
     glEnableVertexArrayAttrib(vao, a);
   }
@@ -219,7 +221,7 @@ void GlBackend::VolumeUpload::upload(const VolumeBuffer& volume, const VolumePla
           VolumeVertex vertex{v[kQuadTriangles[3 * t + k]], w};
           if (corners == kQuadCorners)  // (u, u_far, v_far, v): long edges u-u_far, v-v_far
             vertex.side[0] = v[0], vertex.side[1] = v[1], vertex.side[2] = v[3],
-            vertex.side[3] = v[2];
+            vertex.side[3] = v[2], vertex.second = t;
           out.push_back(vertex);
         }
     }
@@ -320,13 +322,17 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
   glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &fbo_height);
   r->max_image_side_ = std::min({texture, viewport[0], viewport[1], fbo_width, fbo_height});
   using namespace glsl;
-  // The count passes' fragment shaders, without and with the strips' fragment test.
-  const std::string version = "#version 450 core\n";
-  const std::string strips_defined = version + "#define STRIPS\n";
-  const std::string count[2] = {version + kCountPrelude + kCountFragment,
-                                strips_defined + kCountPrelude + kCountFragment};
-  const std::string light_map[2] = {version + kCountPrelude + kLightMapFragment,
-                                    strips_defined + kCountPrelude + kLightMapFragment};
+  // The count passes' fragment shaders, [strips][slivers]: without and with the strips' fragment
+  // test, for the rest and for the slivers.
+  std::string count[2][2], light_map[2][2];
+  for (int strips = 0; strips < 2; ++strips)
+    for (int slivers = 0; slivers < 2; ++slivers) {
+      const std::string defined = std::string("#version 450 core\n") +
+                                  (strips ? "#define STRIPS\n" : "") +
+                                  (slivers ? "#define SLIVERS\n" : "") + kCountPrelude;
+      count[strips][slivers] = defined + kCountFragment;
+      light_map[strips][slivers] = defined + kLightMapFragment;
+    }
   struct Build {
     Object* out;
     const char* name;
@@ -370,46 +376,51 @@ Expected<std::unique_ptr<GlBackend>> GlBackend::create(GlSettings settings,
   };
   for (const Build& b : builds)
     if (auto ok = link(b, b.name); !ok) return ok.error();
-  // The count passes, over the whole image ([0]) and in strips ([1]), from CPU or GPU volumes.
-  for (int strips = 0; strips < 2; ++strips) {
-    const char* in = strips ? " in strips" : "";
-    const Build counts[] = {
-        {&r->volume_cpu_[strips],
-         "cpu volumes",
-         {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, count[strips].c_str()}}},
-        {&r->volume_gpu_[strips],
-         "gpu volumes",
-         {{GL_VERTEX_SHADER, kPassVertex},
-          {GL_GEOMETRY_SHADER, kVolumeGeometry},
-          {GL_FRAGMENT_SHADER, count[strips].c_str()}}},
-        {&r->light_map_cpu_[strips],
-         "cpu volumes into the light map",
-         {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, light_map[strips].c_str()}}},
-        {&r->light_map_gpu_[strips],
-         "gpu volumes into the light map",
-         {{GL_VERTEX_SHADER, kPassVertex},
-          {GL_GEOMETRY_SHADER, kVolumeGeometry},
-          {GL_FRAGMENT_SHADER, light_map[strips].c_str()}}},
-        {&r->volume_vs_[strips],
-         "volumes extruded in the vertex shader",
-         {{GL_VERTEX_SHADER, kVolumeExtrusionVertex}, {GL_FRAGMENT_SHADER, count[strips].c_str()}}},
-        {&r->light_map_vs_[strips],
-         "volumes extruded in the vertex shader into the light map",
-         {{GL_VERTEX_SHADER, kVolumeExtrusionVertex},
-          {GL_FRAGMENT_SHADER, light_map[strips].c_str()}}}};
-    for (const Build& b : counts)
-      if (auto ok = link(b, std::string(b.name) + in); !ok) return ok.error();
-  }
+  // The count passes, over the whole image ([0]) and in strips ([1]), from CPU or GPU volumes,
+  // each a pair: the rest and the slivers (sliver_pass set once).
+  for (int strips = 0; strips < 2; ++strips)
+    for (int slivers = 0; slivers < 2; ++slivers) {
+      auto pick = [slivers](CountPrograms& pair) { return slivers ? &pair.slivers : &pair.rest; };
+      const char* count_fs = count[strips][slivers].c_str();
+      const char* light_map_fs = light_map[strips][slivers].c_str();
+      const std::string in = std::string(strips ? " in strips" : "") + (slivers ? ", slivers" : "");
+      const Build counts[] = {
+          {pick(r->volume_cpu_[strips]),
+           "cpu volumes",
+           {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, count_fs}}},
+          {pick(r->volume_gpu_[strips]),
+           "gpu volumes",
+           {{GL_VERTEX_SHADER, kPassVertex},
+            {GL_GEOMETRY_SHADER, kVolumeGeometry},
+            {GL_FRAGMENT_SHADER, count_fs}}},
+          {pick(r->light_map_cpu_[strips]),
+           "cpu volumes into the light map",
+           {{GL_VERTEX_SHADER, kVolumeVertex}, {GL_FRAGMENT_SHADER, light_map_fs}}},
+          {pick(r->light_map_gpu_[strips]),
+           "gpu volumes into the light map",
+           {{GL_VERTEX_SHADER, kPassVertex},
+            {GL_GEOMETRY_SHADER, kVolumeGeometry},
+            {GL_FRAGMENT_SHADER, light_map_fs}}},
+          {pick(r->volume_vs_[strips]),
+           "volumes extruded in the vertex shader",
+           {{GL_VERTEX_SHADER, kVolumeExtrusionVertex}, {GL_FRAGMENT_SHADER, count_fs}}},
+          {pick(r->light_map_vs_[strips]),
+           "volumes extruded in the vertex shader into the light map",
+           {{GL_VERTEX_SHADER, kVolumeExtrusionVertex}, {GL_FRAGMENT_SHADER, light_map_fs}}},
+          // Batches: CPU volumes only, never in strips (count_volumes).
+          {strips ? nullptr : pick(r->volume_batch_),
+           "cpu volumes in batches",
+           {{GL_VERTEX_SHADER, kVolumeBatchVertex}, {GL_FRAGMENT_SHADER, count_fs}}},
+          {strips ? nullptr : pick(r->light_map_batch_),
+           "cpu volumes in batches into the light map",
+           {{GL_VERTEX_SHADER, kVolumeBatchVertex}, {GL_FRAGMENT_SHADER, light_map_fs}}}};
+      for (const Build& b : counts) {
+        if (!b.out) continue;
+        if (auto ok = link(b, b.name + in); !ok) return ok.error();
+        glProgramUniform1i(b.out->get(), kSliverPass, slivers);
+      }
+    }
   r->empty_vao_ = make_vertex_array();
-  for (auto [out, fragment, name] :
-       {std::tuple{&r->volume_batch_, count[0].c_str(), "cpu volumes in batches"},
-        std::tuple{&r->light_map_batch_, light_map[0].c_str(),
-                   "cpu volumes in batches into the light map"}}) {
-    auto program = link_program(
-        name, {{GL_VERTEX_SHADER, kVolumeBatchVertex}, {GL_FRAGMENT_SHADER, fragment}});
-    if (!program) return program.error();
-    *out = std::move(*program);
-  }
   r->batch_ = std::make_unique<Batch>();
   r->geometry_ = std::make_unique<SceneGeometry>();
   {
@@ -874,10 +885,11 @@ namespace {
 enum class Rule : std::uint8_t { zpass, zfail };
 
 // Sets up one draw of weight sign `sign` under `rule`, into an additive target or the stencil.
-void count_state(bool additive, Rule rule, int sign) {
+void count_state(const CountPrograms& programs, bool additive, Rule rule, int sign) {
   if (additive) {
     glDepthFunc(rule == Rule::zpass ? GL_GREATER : GL_LEQUAL);
-    glUniform1f(glsl::kRuleSign, static_cast<float>(rule == Rule::zpass ? sign : -sign));
+    const auto rule_sign = static_cast<float>(rule == Rule::zpass ? sign : -sign);
+    programs.each([&](GLuint p) { glProgramUniform1f(p, glsl::kRuleSign, rule_sign); });
     return;
   }
   glDepthFunc(GL_GREATER);
@@ -892,13 +904,32 @@ void count_state(bool additive, Rule rule, int sign) {
   }
 }
 
+// z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: it clamps depth
+// rather than clip there, and clips at the near plane by a clip distance, so that no drawn
+// triangle reaches towards the eye's plane, where depth z / w grows without bound (a sliver's
+// depth plane misses by its depth range; glsl::SHADOWVOL_GLSL_SLIVERS). What lies before the near
+// plane never counts under z-fail: its clamped depth 1 passes. z-pass clips there as the software
+// backend does.
+void near_clip(Rule rule) {
+  if (rule == Rule::zfail) {
+    glEnable(GL_DEPTH_CLAMP);
+    glEnable(GL_CLIP_DISTANCE0);
+  } else {
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_CLIP_DISTANCE0);
+  }
+}
+
 }  // namespace
 
 void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
   const FramePlan& plan = in_->plan;
   const VolumePlan& v = plan.volume(l, o);
   const glm::mat4 mvp = plan.view_proj * plan.objects[o].model;
-  glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+  const CountPrograms& programs = *counting_;
+  programs.each([&](GLuint p) {
+    glProgramUniformMatrix4fv(p, glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+  });
   const int mirror = plan.objects[o].weight_sign;
   // The volume's primitives of one rule: all of them, or (CPU volumes under rules per part) those
   // of the parts of that rule.
@@ -915,19 +946,22 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
     glBindVertexArray(up->vao.get());
     ranges = {{Rule::zpass, 0, up->zfail_first},
               {Rule::zfail, up->zfail_first, up->vertices - up->zfail_first}};
-    draw = [up, additive, mirror](const Range& range) {
+    auto triangles = [this](GLint first, GLsizei count) {
+      count_draw([=] { glDrawArrays(GL_TRIANGLES, first, count); });
+    };
+    draw = [&programs, up, additive, mirror, triangles](const Range& range) {
       if (additive) {
-        count_state(true, range.rule, mirror);
-        glDrawArrays(GL_TRIANGLES, range.first, range.count);
+        count_state(programs, true, range.rule, mirror);
+        triangles(range.first, range.count);
         return;
       }
       for (const VolumeUpload::Group& g : up->groups) {
         if (g.zfail != (range.rule == Rule::zfail)) continue;
-        count_state(false, range.rule, g.weight > 0 ? mirror : -mirror);
-        for (int k = 0; k < std::abs(g.weight); ++k) glDrawArrays(GL_TRIANGLES, g.first, g.count);
+        count_state(programs, false, range.rule, g.weight > 0 ? mirror : -mirror);
+        for (int k = 0; k < std::abs(g.weight); ++k) triangles(g.first, g.count);
       }
     };
-    draw_all = [](const Range& range) { glDrawArrays(GL_TRIANGLES, range.first, range.count); };
+    draw_all = [triangles](const Range& range) { triangles(range.first, range.count); };
   } else {
     const Rule rule = v.rule == VolumeRule::zfail ? Rule::zfail : Rule::zpass;
     ranges = {{rule, 0, 1}};
@@ -943,29 +977,35 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m->adjacency_positions.get());
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m->adjacency_indices.get());
     }
-    glUniform4fv(glsl::kLight, 1, glm::value_ptr(v.object_light));
-    glUniform4fv(glsl::kFarPlane, 1, glm::value_ptr(v.build.far_plane));
-    glUniform1i(glsl::kRobust, robust);
-    glUniform1i(glsl::kCaps, rule == Rule::zfail       ? glsl::kCapsAll
-                             : v.light_caps_everywhere ? glsl::kCapsLight
-                                                       : glsl::kCapsNone);
-    auto emit = [m, gs = gs_](int mode) {
-      glUniform1i(glsl::kEmit, mode);
-      if (gs)
-        glDrawElements(GL_TRIANGLES_ADJACENCY, m->adjacency_index_count, GL_UNSIGNED_INT, nullptr);
-      else
-        glDrawArrays(GL_TRIANGLES, 0, m->adjacency_index_count / 6 * glsl::kVertexVolumeCorners);
+    const int caps = rule == Rule::zfail       ? glsl::kCapsAll
+                     : v.light_caps_everywhere ? glsl::kCapsLight
+                                               : glsl::kCapsNone;
+    programs.each([&](GLuint p) {
+      glProgramUniform4fv(p, glsl::kLight, 1, glm::value_ptr(v.object_light));
+      glProgramUniform4fv(p, glsl::kFarPlane, 1, glm::value_ptr(v.build.far_plane));
+      glProgramUniform1i(p, glsl::kRobust, robust);
+      glProgramUniform1i(p, glsl::kCaps, caps);
+    });
+    auto emit = [this, &programs, m, gs = gs_](int mode) {
+      programs.each([&](GLuint p) { glProgramUniform1i(p, glsl::kEmit, mode); });
+      count_draw([m, gs] {
+        if (gs)
+          glDrawElements(GL_TRIANGLES_ADJACENCY, m->adjacency_index_count, GL_UNSIGNED_INT,
+                         nullptr);
+        else
+          glDrawArrays(GL_TRIANGLES, 0, m->adjacency_index_count / 6 * glsl::kVertexVolumeCorners);
+      });
     };
-    draw = [additive, robust, emit, mirror](const Range& range) {
+    draw = [&programs, additive, robust, emit, mirror](const Range& range) {
       if (additive) {
-        count_state(true, range.rule, mirror);
+        count_state(programs, true, range.rule, mirror);
         emit(glsl::kEmitWeighted);
         return;
       }
-      count_state(false, range.rule, mirror);
+      count_state(programs, false, range.rule, mirror);
       emit(glsl::kEmitPositive);
       if (robust && range.rule == Rule::zfail) {
-        count_state(false, range.rule, -mirror);
+        count_state(programs, false, range.rule, -mirror);
         emit(glsl::kEmitNegative);
       }
     };
@@ -977,18 +1017,15 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
     if (clamps_discrete(in_->options.clamp)) {
       const raster::ScreenStrip strip = v.strips.empty() ? raster::ScreenStrip{} : v.strips[r];
       constexpr float kUnbounded = 1e30f;
-      glUniform2fv(glsl::kStripAcross, 1, glm::value_ptr(strip.across));
-      glUniform2f(glsl::kStripBounds, std::max(strip.lo, -kUnbounded),
-                  std::min(strip.hi, kUnbounded));
+      programs.each([&](GLuint p) {
+        glProgramUniform2fv(p, glsl::kStripAcross, 1, glm::value_ptr(strip.across));
+        glProgramUniform2f(p, glsl::kStripBounds, std::max(strip.lo, -kUnbounded),
+                           std::min(strip.hi, kUnbounded));
+      });
     }
     for (const Range& range : ranges) {
       if (range.count == 0) continue;
-      // z-fail's dark caps lie on w = 0, where rounding may push a depth below 0: clamp rather
-      // than clip. (z-pass keeps near-plane clipping, as the software backend does.)
-      if (range.rule == Rule::zfail)
-        glEnable(GL_DEPTH_CLAMP);
-      else
-        glDisable(GL_DEPTH_CLAMP);
+      near_clip(range.rule);
       draw(range);
       if (in_->options.count_fill)
         measure_fill(range.rule == Rule::zpass, [&] { draw_all(range); });
@@ -997,8 +1034,27 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
 }
 
 void GlBackend::set_viewport_uniform() {
-  glUniform2f(glsl::kViewport, static_cast<float>(in_->options.width),
-              static_cast<float>(in_->options.height));
+  const auto width = static_cast<float>(in_->options.width);
+  const auto height = static_cast<float>(in_->options.height);
+  counting_->each([&](GLuint p) { glProgramUniform2f(p, glsl::kViewport, width, height); });
+}
+
+void GlBackend::set_per_count(const glm::vec3& log_transmittance) {
+  counting_->each([&](GLuint p) {
+    glProgramUniform3fv(p, glsl::kPerCount, 1, glm::value_ptr(log_transmittance));
+  });
+}
+
+void GlBackend::use_counting(const CountPrograms& programs) {
+  counting_ = &programs;
+  glUseProgram(programs.rest.get());
+}
+
+void GlBackend::count_draw(const std::function<void()>& draw) {
+  draw();
+  glUseProgram(counting_->slivers.get());
+  draw();
+  glUseProgram(counting_->rest.get());
 }
 
 // The pixels a volume's draw touches with the depth test off (CC shadow volumes §4's fill), and
@@ -1043,8 +1099,8 @@ VolumeCosts GlBackend::measure_volume_costs() {
                        static_cast<GLsizeiptr>(vertices.size() * sizeof(VolumeVertex)),
                        vertices.data(), 0);
   bind_volume_vertices(vao.get(), buffer.get());
-  glUseProgram(volume_cpu_[0].get());
-  const glm::mat4 identity(1.0f);  // the triangles are in clip space already
+  glUseProgram(volume_cpu_[0].rest.get());  // the typical volumes have no sides: no slivers
+  const glm::mat4 identity(1.0f);           // the triangles are in clip space already
   glUniformMatrix4fv(glsl::kMvp, 1, GL_FALSE, glm::value_ptr(identity));
   glBindVertexArray(vao.get());
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -1066,7 +1122,7 @@ VolumeCosts GlBackend::measure_volume_costs() {
     glViewport(0, 0, side, side);
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfi(fbo.get(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
-    count_state(true, Rule::zpass, 1);
+    count_state(volume_cpu_[0], true, Rule::zpass, 1);
     double best = INFINITY;
     for (int run = 0; run < 5; ++run) {
       glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, zero);
@@ -1122,9 +1178,7 @@ void GlBackend::begin_mask(std::size_t l) {
   }
   scissor(l);
   const int strips = clamps_discrete(in_->options.clamp);
-  glUseProgram(cpu_  ? volume_cpu_[strips].get()
-               : gs_ ? volume_gpu_[strips].get()
-                     : volume_vs_[strips].get());
+  use_counting(cpu_ ? volume_cpu_[strips] : gs_ ? volume_gpu_[strips] : volume_vs_[strips]);
   set_viewport_uniform();
 }
 
@@ -1140,9 +1194,9 @@ void GlBackend::begin_light_map(std::size_t l) {
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
   const int strips = clamps_discrete(in_->options.clamp);
-  glUseProgram(cpu_  ? light_map_cpu_[strips].get()
-               : gs_ ? light_map_gpu_[strips].get()
-                     : light_map_vs_[strips].get());
+  use_counting(cpu_  ? light_map_cpu_[strips]
+               : gs_ ? light_map_gpu_[strips]
+                     : light_map_vs_[strips]);
   set_viewport_uniform();
 }
 
@@ -1217,13 +1271,12 @@ void GlBackend::count_volumes(std::size_t l, std::span<const std::uint32_t> obje
   glVertexArrayBindingDivisor(b.vao.get(), 1, 1);
   glVertexArrayAttribBinding(b.vao.get(), 2, 1);
   glEnableVertexArrayAttrib(b.vao.get(), 2);
-  GLint program = 0;
-  glGetIntegerv(GL_CURRENT_PROGRAM, &program);
-  glUseProgram(into_light_map_ ? light_map_batch_.get() : volume_batch_.get());
+  const CountPrograms* pass = counting_;
+  use_counting(into_light_map_ ? light_map_batch_ : volume_batch_);
   set_viewport_uniform();
   if (into_light_map_) {  // every object of one call is of one group
     const auto group = static_cast<std::size_t>(plan.objects[objects.front()].glass_group);
-    glUniform3fv(glsl::kPerCount, 1, glm::value_ptr(plan.glass[group].log_transmittance));
+    set_per_count(plan.glass[group].log_transmittance);
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.objects.get());
   glBindVertexArray(b.vao.get());
@@ -1232,40 +1285,39 @@ void GlBackend::count_volumes(std::size_t l, std::span<const std::uint32_t> obje
     fill_buffer(b.commands, b.command_bytes, draws.data(),
                 GLsizeiptr(draws.size() * sizeof(Batch::Command)));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.commands.get());
-    glMultiDrawArraysIndirect(GL_TRIANGLES, nullptr, GLsizei(draws.size()), 0);
+    count_draw(
+        [n = GLsizei(draws.size())] { glMultiDrawArraysIndirect(GL_TRIANGLES, nullptr, n, 0); });
   };
   for (int zfail = 0; zfail < 2; ++zfail) {
     if (b.whole[zfail].empty()) continue;
     const Rule rule = zfail ? Rule::zfail : Rule::zpass;
-    if (zfail)  // as draw_volume: the dark caps at w = 0 clamped rather than clipped
-      glEnable(GL_DEPTH_CLAMP);
-    else
-      glDisable(GL_DEPTH_CLAMP);
+    near_clip(rule);
     if (additive) {
-      count_state(true, rule, 1);  // the mirror is each object's, in the vertex shader
+      count_state(*counting_, true, rule, 1);  // the mirror is each object's, in the vertex shader
       multi_draw(b.whole[zfail]);
     } else {
       for (int negative = 0; negative < 2; ++negative) {
-        count_state(false, rule, negative ? -1 : 1);
+        count_state(*counting_, false, rule, negative ? -1 : 1);
         multi_draw(b.draws[zfail][negative]);
       }
     }
     if (in_->options.count_fill) measure_fill(!zfail, [&] { multi_draw(b.whole[zfail]); });
   }
-  glUseProgram(GLuint(program));
+  use_counting(*pass);
 }
 
 void GlBackend::count_volume(std::size_t l, std::size_t o) {
   if (!into_light_map_) return draw_volume(l, o, mask_additive_);
   const FramePlan& plan = in_->plan;
   const auto group = static_cast<std::size_t>(plan.objects[o].glass_group);
-  glUniform3fv(glsl::kPerCount, 1, glm::value_ptr(plan.glass[group].log_transmittance));
+  set_per_count(plan.glass[group].log_transmittance);
   draw_volume(l, o, true);
 }
 
 void GlBackend::end_counts() {
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_DEPTH_CLAMP);
+  glDisable(GL_CLIP_DISTANCE0);
   glDisable(GL_BLEND);
   glDisable(GL_STENCIL_TEST);  // the stencil holds the mask until the lit pass reads it
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

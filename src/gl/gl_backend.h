@@ -25,6 +25,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "core/expected.h"
@@ -65,6 +66,18 @@ Expected<void> check_settings(const GlSettings& settings, Generator generator);
 // Refuses, besides check_settings', what only the software rasterizer draws: the split-plane
 // and pre-filled methods (soft_only) and tile work.
 Expected<void> check_frame(const GlSettings& settings, const RenderOptions& options);
+
+// A count pass's pair of programs: `rest` draws a volume's primitives but its slivers with the
+// rasterizer's depth, `slivers` only those, keeping their depth (glsl::kCountPrelude). Every
+// count draw runs with both, and each uniform is set on both.
+struct CountPrograms {
+  Object rest, slivers;
+  template <class Set>
+  void each(Set&& set) const {  // set(program), e.g. with glProgramUniform*
+    set(rest.get());
+    set(slivers.get());
+  }
+};
 
 class GlBackend final : public FrameBackend {
  public:
@@ -132,6 +145,11 @@ class GlBackend final : public FrameBackend {
   // Adds the fill and the stencil writes of one draw of a volume (draw_all: every primitive
   // once) into the frame's stats (RenderOptions::count_fill).
   void measure_fill(bool zpass, const std::function<void()>& draw_all);
+  void use_counting(const CountPrograms& programs);  // binds its `rest`
+  // Runs draw with counting_'s `rest`, then with its `slivers`.
+  void count_draw(const std::function<void()>& draw);
+  // The light map's log transmittance per count, of the caster being counted.
+  void set_per_count(const glm::vec3& log_transmittance);
   // The count programs' viewport uniform (strips, slivers: glsl::kCountPrelude).
   void set_viewport_uniform();
   void scissor(std::size_t light);  // enables the scissor test on the light's reach
@@ -145,11 +163,11 @@ class GlBackend final : public FrameBackend {
   // to match the depths of geometry-shader volumes (shaders.h).
   Object surface_depth_[2], surface_lit_[2];
   // The count passes' programs: [0] over the whole image, [1] with the strips' fragment test.
-  Object volume_cpu_[2], volume_gpu_[2], light_map_cpu_[2], light_map_gpu_[2];
-  Object volume_vs_[2], light_map_vs_[2];
+  CountPrograms volume_cpu_[2], volume_gpu_[2], light_map_cpu_[2], light_map_gpu_[2];
+  CountPrograms volume_vs_[2], light_map_vs_[2];
   Object cover_, see_through_, background_, resolve_, query_;
-  Object volume_batch_, light_map_batch_;  // count_volumes' programs (kVolumeBatchVertex)
-  Object depth_batch_;                     // draw_depth's (kSurfaceBatchVertex)
+  CountPrograms volume_batch_, light_map_batch_;  // count_volumes' (kVolumeBatchVertex)
+  Object depth_batch_;                            // draw_depth's (kSurfaceBatchVertex)
   // The frame's meshes in one vertex and one index buffer, for draw_depth's multi-draws: per
   // mesh its base vertex and first index; remade when the meshes change.
   struct SceneGeometry;
@@ -200,6 +218,7 @@ class GlBackend final : public FrameBackend {
   bool gs_ = false;  // in the geometry shader, whose light caps the surfaces pass through too
   bool unit_weights_ = true;     // every opaque caster's CPU volume of the light has weights +-1
   bool mask_additive_ = false;   // the light's mask counts into the R32F target, not the stencil
+  const CountPrograms* counting_ = nullptr;  // the count pass's programs (use_counting)
   bool into_light_map_ = false;  // count_volume adds into the light map
   Layer layer_ = Layer::opaque;  // of the depth pass begun
   // The depth pass's depths read back, rows from the top (for the lights' ranges), since it began.

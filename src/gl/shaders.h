@@ -8,6 +8,9 @@
 //   - The count passes' fragment shaders, built with STRIPS defined, keep to a strip of the image
 //     (discrete clamping, accel/slices.h): a fragment test, so that no triangle is cut and a light
 //     cap keeps its surface's depths (raster::ScreenStrip).
+//   - Every count draw runs twice, with a pair of programs (SHADOWVOL_GLSL_SLIVERS): the slivers'
+//     program alone writes a fragment depth (kCountPrelude), so the rest keeps early depth and
+//     stencil tests.
 //   - The geometry shader decides a face's facing from its three vertices symmetrically (three
 //     normals, three light directions), so that a face gets the same answer as itself and as a
 //     neighbour (GPU Gems 3 listing 11-1), and a face of zero area gets 0 and casts nothing.
@@ -22,7 +25,8 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kShininess = 14, kBackgroundTop = 15, kBackgroundBottom = 16, kHeight = 17,
                      kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
                      kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25,
-                     kSmoothNormals = 26, kTextured = 27, kAmbientOnly = 28, kFacingOnly = 29;
+                     kSmoothNormals = 26, kTextured = 27, kAmbientOnly = 28, kFacingOnly = 29,
+                     kSliverPass = 30;
 
 // Shader storage bindings of the lit pass.
 inline constexpr int kFaceNormalsBinding = 0, kPositionsBinding = 1, kIndicesBinding = 2,
@@ -252,18 +256,96 @@ void main() {
 }
 )";
 
+// Clip points in homogeneous window coordinates (at infinity where w = 0), and the lines through
+// them: what the volume stages' sliver test and the count passes' sliver depth share.
+#define SHADOWVOL_GLSL_WINDOW                                                                     \
+  "layout(location = 24) uniform vec2 viewport;\n"                                                \
+  "vec3 to_window(vec4 c) { return vec3((c.xy + c.w) * (0.5 * viewport), c.w); }\n"               \
+  "vec3 window_line(vec4 a, vec4 b) { return cross(to_window(a), to_window(b)); }\n"
+
+// Each count draw runs twice, once per program of a pair: the slivers' program draws the
+// triangles where kCountPrelude's volume_depth may keep a sliver's depth, the other the rest with
+// the rasterizer's depth, early depth and stencil tests and all. volume_depth acts only where both
+// long edges of the side lie within half a pixel of the fragment, so a triangle goes to the
+// slivers' program where some point of it lies within kReach of both lines (half a pixel, and
+// room for snapping and rounding). Its part in front of the near plane (z <= w; nothing behind it
+// is drawn: gl_backend.cpp's near_clip) mapped to (distance to one line, distance to the other) is
+// a convex polygon; the separating axis test says whether it meets the square of side 2 kReach
+// about 0. A cap (no corners) has no lines: it never does.
+#define SHADOWVOL_GLSL_SLIVERS                                                                    \
+  SHADOWVOL_GLSL_WINDOW                                                                           \
+  "layout(location = 30) uniform bool sliver_pass;  // this program draws the slivers\n"          \
+  "out float gl_ClipDistance[1];\n"                                                               \
+  "// The near plane as a clip plane (enabled under z-fail, which clamps depth: near_clip).\n"    \
+  "void set_position(vec4 c) {\n"                                                                 \
+  "  gl_Position = c;\n"                                                                          \
+  "  gl_ClipDistance[0] = c.w - c.z;\n"                                                           \
+  "}\n"                                                                                           \
+  "vec4 near_cut(vec4 a, vec4 b) {  // where a-b meets the near plane\n"                          \
+  "  float da = a.w - a.z, db = b.w - b.z;\n"                                                     \
+  "  return mix(a, b, da / (da - db));\n"                                                         \
+  "}\n"                                                                                           \
+  "// Whether polygon q (convex, in order) stays off the square |x|, |y| <= r along axis n.\n"    \
+  "bool apart(vec2 n, vec2 q[4], float r) {\n"                                                    \
+  "  float lo = dot(n, q[0]), hi = lo;\n"                                                         \
+  "  for (int i = 1; i < 4; ++i) lo = min(lo, dot(n, q[i])), hi = max(hi, dot(n, q[i]));\n"       \
+  "  float reach = r * (abs(n.x) + abs(n.y));\n"                                                  \
+  "  return lo > reach || hi < -reach;\n"                                                         \
+  "}\n"                                                                                           \
+  "// Whether triangle p, q, r of side c (a, a_far, b, b_far) has a point in front of the near\n" \
+  "// plane within kReach pixels of both long edges' lines.\n"                                    \
+  "bool near_both_edges(vec4 c[4], vec4 p, vec4 q, vec4 r) {\n"                                   \
+  "  const float kReach = 0.75;\n"                                                                \
+  "  vec3 u = window_line(c[0], c[1]), v = window_line(c[2], c[3]);\n"                            \
+  "  float lu = length(u.xy), lv = length(v.xy);\n"                                               \
+  "  if (!(lu > 0.0 && lv > 0.0)) return false;  // a cap, or an edge seen end-on\n"              \
+  "  bool ip = p.z <= p.w, iq = q.z <= q.w, ir = r.z <= r.w;\n"                                   \
+  "  int inside = int(ip) + int(iq) + int(ir);\n"                                                 \
+  "  if (inside == 0) return false;\n"                                                            \
+  "  if (inside < 3) {  // the odd corner first: the one in front, or the one behind\n"           \
+  "    bool odd_q = inside == 1 ? iq : !iq, odd_r = inside == 1 ? ir : !ir;\n"                    \
+  "    vec4 t = p;\n"                                                                             \
+  "    if (odd_q) p = q, q = r, r = t;\n"                                                         \
+  "    else if (odd_r) p = r, r = q, q = t;\n"                                                    \
+  "  }\n"                                                                                         \
+  "  vec4 corner[4] = vec4[4](p, q, r, r);\n"                                                     \
+  "  if (inside == 1) corner = vec4[4](p, near_cut(p, q), near_cut(p, r), near_cut(p, r));\n"     \
+  "  if (inside == 2) corner = vec4[4](near_cut(p, q), q, r, near_cut(r, p));\n"                  \
+  "  vec2 d[4];  // each corner's signed distances to the two lines\n"                            \
+  "  for (int i = 0; i < 4; ++i) {\n"                                                             \
+  "    if (!(corner[i].w > 0.0)) return true;  // a point at the eye's horizon\n"                 \
+  "    vec3 h = to_window(corner[i]);\n"                                                          \
+  "    d[i] = vec2(dot(u, h) / lu, dot(v, h) / lv) / h.z;\n"                                      \
+  "  }\n"                                                                                         \
+  "  if (apart(vec2(1.0, 0.0), d, kReach) || apart(vec2(0.0, 1.0), d, kReach)) return false;\n"   \
+  "  for (int i = 0; i < 4; ++i) {\n"                                                             \
+  "    vec2 e = d[(i + 1) % 4] - d[i];\n"                                                         \
+  "    if (apart(vec2(-e.y, e.x), d, kReach)) return false;\n"                                    \
+  "  }\n"                                                                                         \
+  "  return true;\n"                                                                              \
+  "}\n"                                                                                           \
+  "// Whether this program draws triangle p, q, r of side c (a cap's corners: all 0).\n"          \
+  "bool in_this_pass(vec4 c[4], vec4 p, vec4 q, vec4 r) {\n"                                      \
+  "  return near_both_edges(c, p, q, r) == sliver_pass;\n"                                        \
+  "}\n"
+
 // Volumes built on the CPU: one signed weight per triangle.
 inline constexpr const char* kVolumeVertex = SHADOWVOL_GLSL_PRELUDE R"(
 layout(location = 0) in vec4 position;  // w = 0 at infinity
 layout(location = 1) in int weight;
 layout(location = 3) in vec4 side[4];  // its side's a, a_far, b, b_far; 0 on a cap
+layout(location = 7) in int second;    // of its side's triangles (a, a_far, b_far), (a, b_far, b)
 flat out int primitive_weight;
 flat out vec4 side_corners[4];
 invariant gl_Position;
+)" SHADOWVOL_GLSL_SLIVERS R"(
 void main() {
   primitive_weight = weight;
-  for (int i = 0; i < 4; ++i) side_corners[i] = to_clip(side[i]);
-  gl_Position = to_clip(position);
+  vec4 c[4];
+  for (int i = 0; i < 4; ++i) c[i] = to_clip(side[i]);
+  side_corners = c;
+  bool drawn = in_this_pass(c, c[0], second != 0 ? c[3] : c[1], second != 0 ? c[2] : c[3]);
+  set_position(drawn ? to_clip(position) : vec4(0.0));  // 0: nothing drawn
 }
 )";
 
@@ -278,14 +360,19 @@ layout(location = 0) in vec4 position;  // w = 0 at infinity
 layout(location = 1) in int weight;
 layout(location = 2) in uint object;
 layout(location = 3) in vec4 side[4];  // its side's a, a_far, b, b_far; 0 on a cap
+layout(location = 7) in int second;    // of its side's triangles (a, a_far, b_far), (a, b_far, b)
 flat out int primitive_weight;
 flat out vec4 side_corners[4];
 invariant gl_Position;
+)" SHADOWVOL_GLSL_SLIVERS R"(
 void main() {
   primitive_weight = weight * objects[object].mirror.x;
-  for (int i = 0; i < 4; ++i) side_corners[i] = objects[object].mvp * side[i];
+  vec4 s[4];
+  for (int i = 0; i < 4; ++i) s[i] = objects[object].mvp * side[i];
+  side_corners = s;
   precise vec4 c = objects[object].mvp * position;
-  gl_Position = c;
+  bool drawn = in_this_pass(s, s[0], second != 0 ? s[3] : s[1], second != 0 ? s[2] : s[3]);
+  set_position(drawn ? c : vec4(0.0));
 }
 )";
 
@@ -355,20 +442,20 @@ inline constexpr const char* kVolumeGeometry = SHADOWVOL_GLSL_PRELUDE R"(
 layout(triangles_adjacency) in;
 layout(triangle_strip, max_vertices = 18) out;
 in vec4 object_position[];
-)" SHADOWVOL_GLSL_VOLUME R"(
+)" SHADOWVOL_GLSL_VOLUME SHADOWVOL_GLSL_SLIVERS R"(
 vec4 corners[4];  // of the side being emitted (0 for a cap)
 // A vertex of the mesh (index i of the input), with the vertex shader's clip position.
 void emit_vertex(int i, int weight) {
   primitive_weight = weight;
   side_corners = corners;
-  gl_Position = gl_in[i].gl_Position;
+  set_position(gl_in[i].gl_Position);
   EmitVertex();
 }
 // The extrusion of vertex i onto the far plane.
 void emit_far(int i, int weight) {
   primitive_weight = weight;
   side_corners = corners;
-  gl_Position = to_clip(extrude(object_position[i]));
+  set_position(to_clip(extrude(object_position[i])));
   EmitVertex();
 }
 
@@ -379,7 +466,7 @@ void main() {
   int w = face_weight(p[0], p[2], p[4]), dark = dark_cap_weight(p[0], p[2], p[4], w);
   if (w == 0 && dark == 0) return;
   corners = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
-  if (caps != 0) {
+  if (caps != 0 && !sliver_pass) {
     // The light cap keeps its own vertex order (the depth pass's), whatever its sign: a
     // reversed triangle may rasterize to other depths. Hence the separate kEmitNegative draw.
     if (w != 0 && (emit == 2 || (emit == 0 && w > 0) || (emit == 1 && w < 0))) {
@@ -411,11 +498,23 @@ void main() {
     int weight = emit == 0 ? 1 : w;
     corners = vec4[4](gl_in[a].gl_Position, to_clip(extrude(p[a])), gl_in[b].gl_Position,
                       to_clip(extrude(p[b])));
-    emit_vertex(a, weight);
-    emit_far(a, weight);
-    emit_vertex(b, weight);
-    emit_far(b, weight);
-    EndPrimitive();
+    // As a strip where this program draws both triangles (a, a_far, b), (b, a_far, b_far).
+    bool first = in_this_pass(corners, corners[0], corners[1], corners[2]);
+    bool second = in_this_pass(corners, corners[2], corners[1], corners[3]);
+    if (first) {
+      emit_vertex(a, weight);
+      emit_far(a, weight);
+      emit_vertex(b, weight);
+      if (!second) EndPrimitive();
+    }
+    if (second) {
+      if (!first) {
+        emit_vertex(b, weight);
+        emit_far(a, weight);
+      }
+      emit_far(b, weight);
+      EndPrimitive();
+    }
   }
 }
 )";
@@ -432,7 +531,7 @@ void main() {
 inline constexpr const char* kVolumeExtrusionVertex = SHADOWVOL_GLSL_PRELUDE R"(
 layout(std430, binding = 4) readonly buffer Points { vec4 points[]; };
 layout(std430, binding = 5) readonly buffer Adjacency { uint adjacency[]; };
-)" SHADOWVOL_GLSL_VOLUME R"(
+)" SHADOWVOL_GLSL_VOLUME SHADOWVOL_GLSL_SLIVERS R"(
 void main() {
   int face = gl_VertexID / 24, role = gl_VertexID % 24;
   vec4 p[6];
@@ -471,8 +570,11 @@ void main() {
       side_corners = vec4[4](to_clip(p[a]), to_clip(extrude(p[a])), to_clip(p[b]),
                              to_clip(extrude(p[b])));
   }
+  vec4 c[4] = side_corners;  // this corner's triangle: (a, a_far, b) or (b, a_far, b_far)
+  drawn = drawn && (role < 6 || (role - 6) % 6 < 3 ? in_this_pass(c, c[0], c[1], c[2])
+                                                   : in_this_pass(c, c[2], c[1], c[3]));
   primitive_weight = weight;
-  gl_Position = !drawn ? vec4(0.0) : to_clip(far ? extrude(p[vertex]) : p[vertex]);
+  set_position(!drawn ? vec4(0.0) : to_clip(far ? extrude(p[vertex]) : p[vertex]));
 }
 )";
 
@@ -484,9 +586,11 @@ void main() {
 // vertex meet on one line behind a receiver), and the count is off by its weight. There its depth
 // is kept between those of its long edges where a line across them through the fragment meets
 // them; elsewhere it is the rasterizer's. Every stage that draws volumes hands on the corners.
-// Its text follows a "#version" line (and a "#define STRIPS" one for the strips' variant).
-inline constexpr const char* kCountPrelude = R"(
-layout(location = 24) uniform vec2 viewport;
+// Only the slivers' program (SLIVERS defined) writes that depth: a written depth keeps the
+// rasterizer from testing depth and stencil before the shader, which makes a primitive's fill
+// cost two and a half times as much on llvmpipe. Its text follows a "#version" line (and
+// "#define STRIPS" for the strips' variant, "#define SLIVERS" for the slivers').
+inline constexpr const char* kCountPrelude = SHADOWVOL_GLSL_WINDOW R"(
 #ifdef STRIPS
 layout(location = 22) uniform vec2 strip_across;
 layout(location = 23) uniform vec2 strip_bounds;
@@ -499,13 +603,6 @@ void keep_to_strip() {
 }
 
 flat in vec4 side_corners[4];  // clip space: a, a_far, b, b_far; all 0 on a cap
-
-// Clip point c in homogeneous window coordinates (at infinity where c.w = 0).
-vec3 to_window(vec4 c) { return vec3((c.xy + c.w) * (0.5 * viewport), c.w); }
-
-// The line through clip points a and b (b may lie at infinity), in homogeneous window
-// coordinates.
-vec3 window_line(vec4 a, vec4 b) { return cross(to_window(a), to_window(b)); }
 
 // The window depth at window point q of that line, kept to the segment; false where the point
 // lies behind the eye.
@@ -550,7 +647,9 @@ layout(location = 3) uniform float rule_sign;
 layout(location = 0) out float count;
 void main() {
   keep_to_strip();
+#ifdef SLIVERS
   gl_FragDepth = volume_depth();
+#endif
   count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
 }
 )";
@@ -564,7 +663,9 @@ layout(location = 19) uniform vec3 per_count;
 layout(location = 0) out vec4 log_light;
 void main() {
   keep_to_strip();
+#ifdef SLIVERS
   gl_FragDepth = volume_depth();
+#endif
   float count = rule_sign * float(primitive_weight) * (gl_FrontFacing ? 1.0 : -1.0);
   log_light = vec4(count * per_count, 0.0);
 }
@@ -620,5 +721,7 @@ void main() {
 )";
 
 #undef SHADOWVOL_GLSL_PRELUDE
+#undef SHADOWVOL_GLSL_WINDOW
+#undef SHADOWVOL_GLSL_SLIVERS
 
 }  // namespace shadowvol::gl::glsl
