@@ -588,7 +588,7 @@ void main() {
 // them; elsewhere it is the rasterizer's. Every stage that draws volumes hands on the corners.
 // Only the slivers' program (SLIVERS defined) writes that depth: a written depth keeps the
 // rasterizer from testing depth and stencil before the shader, which makes a primitive's fill
-// cost two and a half times as much on llvmpipe. Its text follows a "#version" line (and
+// cost two to three times as much on llvmpipe. Its text follows a "#version" line (and
 // "#define STRIPS" for the strips' variant, "#define SLIVERS" for the slivers').
 inline constexpr const char* kCountPrelude = SHADOWVOL_GLSL_WINDOW R"(
 #ifdef STRIPS
