@@ -929,6 +929,7 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
   const CountPrograms& programs = *counting_;
   programs.each([&](GLuint p) {
     glProgramUniformMatrix4fv(p, glsl::kMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    glProgramUniform1ui(p, glsl::kFirstId, plan.objects[o].first_id);
   });
   const int mirror = plan.objects[o].weight_sign;
   // The volume's primitives of one rule: all of them, or (CPU volumes under rules per part) those
@@ -980,8 +981,13 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
     const int caps = rule == Rule::zfail       ? glsl::kCapsAll
                      : v.light_caps_everywhere ? glsl::kCapsLight
                                                : glsl::kCapsNone;
+    // The eye (the eye-relative origin) in the object's space, in double: the face's plane is
+    // decided against it (glsl face_of_side).
+    const glm::vec4 eye(glm::inverse(glm::dmat4(plan.objects[o].model)) *
+                        glm::dvec4(0.0, 0.0, 0.0, 1.0));
     programs.each([&](GLuint p) {
       glProgramUniform4fv(p, glsl::kLight, 1, glm::value_ptr(v.object_light));
+      glProgramUniform4fv(p, glsl::kEye, 1, glm::value_ptr(eye));
       glProgramUniform4fv(p, glsl::kFarPlane, 1, glm::value_ptr(v.build.far_plane));
       glProgramUniform1i(p, glsl::kRobust, robust);
       glProgramUniform1i(p, glsl::kCaps, caps);
@@ -1177,6 +1183,7 @@ void GlBackend::begin_mask(std::size_t l) {
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   }
   scissor(l);
+  glBindTextureUnit(2, t.ids.get());  // read, not written: colour writes or attachment 0 off
   const int strips = clamps_discrete(in_->options.clamp);
   use_counting(cpu_ ? volume_cpu_[strips] : gs_ ? volume_gpu_[strips] : volume_vs_[strips]);
   set_viewport_uniform();
@@ -1193,6 +1200,7 @@ void GlBackend::begin_light_map(std::size_t l) {
   scissor(l);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
+  glBindTextureUnit(2, t.ids.get());
   const int strips = clamps_discrete(in_->options.clamp);
   use_counting(cpu_  ? light_map_cpu_[strips]
                : gs_ ? light_map_gpu_[strips]

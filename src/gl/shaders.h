@@ -26,7 +26,7 @@ inline constexpr int kMvp = 0, kModel = 1, kNormalMatrix = 2, kRuleSign = 3, kLi
                      kFarPlane = 18, kPerCount = 19, kLightMap = 20, kVisibleOnly = 21,
                      kStripAcross = 22, kStripBounds = 23, kViewport = 24, kFalloff = 25,
                      kSmoothNormals = 26, kTextured = 27, kAmbientOnly = 28, kFacingOnly = 29,
-                     kSliverPass = 30;
+                     kSliverPass = 30, kEye = 31;
 
 // Shader storage bindings of the lit pass.
 inline constexpr int kFaceNormalsBinding = 0, kPositionsBinding = 1, kIndicesBinding = 2,
@@ -337,10 +337,12 @@ layout(location = 3) in vec4 side[4];  // its side's a, a_far, b, b_far; 0 on a 
 layout(location = 7) in int second;    // of its side's triangles (a, a_far, b_far), (a, b_far, b)
 flat out int primitive_weight;
 flat out vec4 side_corners[4];
+flat out int side_face;  // kCountPrelude: not known here
 invariant gl_Position;
 )" SHADOWVOL_GLSL_SLIVERS R"(
 void main() {
   primitive_weight = weight;
+  side_face = 0;
   vec4 c[4];
   for (int i = 0; i < 4; ++i) c[i] = to_clip(side[i]);
   side_corners = c;
@@ -363,10 +365,12 @@ layout(location = 3) in vec4 side[4];  // its side's a, a_far, b, b_far; 0 on a 
 layout(location = 7) in int second;    // of its side's triangles (a, a_far, b_far), (a, b_far, b)
 flat out int primitive_weight;
 flat out vec4 side_corners[4];
+flat out int side_face;  // kCountPrelude: not known here
 invariant gl_Position;
 )" SHADOWVOL_GLSL_SLIVERS R"(
 void main() {
   primitive_weight = weight * objects[object].mirror.x;
+  side_face = 0;
   vec4 s[4];
   for (int i = 0; i < 4; ++i) s[i] = objects[object].mvp * side[i];
   side_corners = s;
@@ -397,20 +401,32 @@ void main() {
   "layout(location = 6) uniform int caps;     // kCapsNone, kCapsLight, kCapsAll\n"                \
   "layout(location = 7) uniform int emit;     // kEmitPositive, kEmitNegative, kEmitWeighted\n"    \
   "layout(location = 18) uniform vec4 far_plane;  // object space; (0, 0, 0, -1): at infinity\n"   \
+  "layout(location = 31) uniform vec4 eye;        // object space\n"                              \
   "flat out int primitive_weight;\n"                                                               \
   "flat out vec4 side_corners[4];  // a side's corners (kCountPrelude); 0 on a cap\n"             \
+  "flat out int side_face;         // kCountPrelude\n"                                            \
   "invariant gl_Position;\n"                                                                       \
   "\n"                                                                                             \
-  "int facing(vec4 a, vec4 b, vec4 c) {\n"                                                         \
+  "// Which side of the plane of a, b, c point x lies on: 1 in front, -1 behind, 0 on it.\n"       \
+  "int side_of(vec4 a, vec4 b, vec4 c, vec4 x) {\n"                                                \
   "  precise vec3 na = cross(b.xyz - a.xyz, c.xyz - a.xyz);\n"                                     \
   "  precise vec3 nb = cross(c.xyz - b.xyz, a.xyz - b.xyz);\n"                                     \
   "  precise vec3 nc = cross(a.xyz - c.xyz, b.xyz - c.xyz);\n"                                     \
-  "  precise float da = dot(na, light.xyz - light.w * a.xyz);\n"                                   \
-  "  precise float db = dot(nb, light.xyz - light.w * b.xyz);\n"                                   \
-  "  precise float dc = dot(nc, light.xyz - light.w * c.xyz);\n"                                   \
+  "  precise float da = dot(na, x.xyz - x.w * a.xyz);\n"                                           \
+  "  precise float db = dot(nb, x.xyz - x.w * b.xyz);\n"                                           \
+  "  precise float dc = dot(nc, x.xyz - x.w * c.xyz);\n"                                           \
   "  if (da > 0.0 || db > 0.0 || dc > 0.0) return 1;\n"                                            \
   "  if (da < 0.0 || db < 0.0 || dc < 0.0) return -1;\n"                                           \
   "  return 0;\n"                                                                                  \
+  "}\n"                                                                                            \
+  "int facing(vec4 a, vec4 b, vec4 c) { return side_of(a, b, c, light); }\n"                       \
+  "\n"                                                                                             \
+  "// A side of face f's edges lies wholly on the far side of f's plane from the light, so the\n"  \
+  "// eye's ray to a point of f meets it in front of f where eye and light lie on either side:\n"  \
+  "// f + 1 then, -(f + 1) where they lie on one side, 0 where the eye is on the plane.\n"         \
+  "int face_of_side(vec4 a, vec4 b, vec4 c, int f) {\n"                                            \
+  "  int across = facing(a, b, c) * side_of(a, b, c, eye);\n"                                      \
+  "  return across < 0 ? f + 1 : across > 0 ? -(f + 1) : 0;\n"                                     \
   "}\n"                                                                                            \
   "\n"                                                                                             \
   "// Its weight (core/volume.cpp, compute_face_weights): robust, the facing; standard, 1 where\n" \
@@ -444,10 +460,12 @@ layout(triangle_strip, max_vertices = 18) out;
 in vec4 object_position[];
 )" SHADOWVOL_GLSL_VOLUME SHADOWVOL_GLSL_SLIVERS R"(
 vec4 corners[4];  // of the side being emitted (0 for a cap)
+int face = 0;      // side_face of the side being emitted (0 for a cap)
 // A vertex of the mesh (index i of the input), with the vertex shader's clip position.
 void emit_vertex(int i, int weight) {
   primitive_weight = weight;
   side_corners = corners;
+  side_face = face;
   set_position(gl_in[i].gl_Position);
   EmitVertex();
 }
@@ -455,6 +473,7 @@ void emit_vertex(int i, int weight) {
 void emit_far(int i, int weight) {
   primitive_weight = weight;
   side_corners = corners;
+  side_face = face;
   set_position(to_clip(extrude(object_position[i])));
   EmitVertex();
 }
@@ -488,6 +507,7 @@ void main() {
     }
   }
   if (emit == 1 || w == 0) return;
+  face = face_of_side(p[0], p[2], p[4], gl_PrimitiveIDIn);
   for (int i = 0; i < 3; ++i) {
     int a = 2 * i, neighbour = 2 * i + 1, b = (2 * i + 2) % 6;
     // Open, non-manifold and inconsistently wound edges have no neighbour (w = 0): every face
@@ -542,6 +562,7 @@ void main() {
   int vertex = 0, weight = 0;
   bool far = false, drawn = false;
   side_corners = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+  side_face = 0;
   if (role < 3) {  // the light cap, in the depth pass's vertex order
     drawn = w != 0 && caps != 0 && (emit == 2 || (emit == 0 && w > 0) || (emit == 1 && w < 0));
     vertex = 2 * role;
@@ -566,9 +587,11 @@ void main() {
     vertex = s < 2 ? a : b;
     far = s == 1 || s == 3;
     weight = emit == 0 ? 1 : w;
-    if (drawn)
+    if (drawn) {
       side_corners = vec4[4](to_clip(p[a]), to_clip(extrude(p[a])), to_clip(p[b]),
                              to_clip(extrude(p[b])));
+      side_face = face_of_side(p[0], p[2], p[4], face);
+    }
   }
   vec4 c[4] = side_corners;  // this corner's triangle: (a, a_far, b) or (b, a_far, b_far)
   drawn = drawn && (role < 6 || (role - 6) % 6 < 3 ? in_this_pass(c, c[0], c[1], c[2])
@@ -603,6 +626,12 @@ void keep_to_strip() {
 }
 
 flat in vec4 side_corners[4];  // clip space: a, a_far, b, b_far; all 0 on a cap
+// A side's face, f + 1 where the side lies in front of it as the eye sees it, -(f + 1) behind,
+// 0 not known (volume stages: face_of_side). Where the depth pass saw f itself, the fragment's
+// depth says so: the rasterizer's depths of f and of its edge-on side tie at the edge.
+flat in int side_face;
+layout(location = 11) uniform uint first_id;
+layout(binding = 2) uniform usampler2D visible_ids;
 
 // The window depth at window point q of that line, kept to the segment; false where the point
 // lies behind the eye.
@@ -621,6 +650,9 @@ bool depth_on(vec4 a, vec4 b, vec2 q, out float depth) {
 float volume_depth() {
   const float kSliver = 0.5;  // pixels from the fragment to either edge
   float z = gl_FragCoord.z;
+  if (side_face != 0 &&
+      texelFetch(visible_ids, ivec2(gl_FragCoord.xy), 0).r == first_id + uint(abs(side_face)))
+    return side_face > 0 ? 1.0 : 0.0;  // reversed depth: 1 at the near plane, 0 at infinity
   vec3 u = window_line(side_corners[0], side_corners[1]);
   vec3 v = window_line(side_corners[2], side_corners[3]);
   float lu = length(u.xy), lv = length(v.xy);

@@ -320,6 +320,11 @@ std::vector<Case> cases() {
       out.push_back({at + size_name(w, h), builtin_at(name, frame), w, h, Set::core});
     }
   }
+  // Frames the full sweep found wrong once, kept in the test command at the size that showed it:
+  // demo 29 at 1280x720, a sliver side of the torus tying with its own face's depth
+  // (glsl::kCountPrelude's side_face).
+  if (!full)
+    out.push_back({"demo_frame29_1280x720", builtin_at("demo", 29), 1280, 720, Set::core});
   const std::vector<std::pair<std::string, Mesh (*)()>> meshes = {{"thin_tube", thin_tube},
                                                                   {"folded_sheet", folded_sheet},
                                                                   {"folded_faces", folded_faces},
