@@ -1176,6 +1176,7 @@ void GlBackend::begin_mask(std::size_t l) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   } else {
     glBindFramebuffer(GL_FRAMEBUFFER, t.scene.get());
+    glNamedFramebufferDrawBuffers(t.scene.get(), 2, kNone);  // the ids are read (kCountPrelude)
     const GLint no_count = 0;
     glClearNamedFramebufferiv(t.scene.get(), GL_STENCIL, 0, &no_count);
     glEnable(GL_STENCIL_TEST);
@@ -1183,7 +1184,7 @@ void GlBackend::begin_mask(std::size_t l) {
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   }
   scissor(l);
-  glBindTextureUnit(2, t.ids.get());  // read, not written: colour writes or attachment 0 off
+  glBindTextureUnit(2, t.ids.get());  // read, not written: stencil or another target
   const int strips = clamps_discrete(in_->options.clamp);
   use_counting(cpu_ ? volume_cpu_[strips] : gs_ ? volume_gpu_[strips] : volume_vs_[strips]);
   set_viewport_uniform();
