@@ -633,12 +633,13 @@ flat in int side_face;
 layout(location = 11) uniform uint first_id;
 layout(binding = 2) uniform usampler2D visible_ids;
 
-// The window depth at window point q of that line, kept to the segment; false where the point
-// lies behind the eye.
+// The window depth at window point q of that line; false where q lies off the segment (a side
+// cut short by clamping ends before the fragment: its line is no bound there) or behind the eye.
 bool depth_on(vec4 a, vec4 b, vec2 q, out float depth) {
   vec3 ha = to_window(a), d = to_window(b) - ha;
   vec2 num = q * ha.z - ha.xy, den = d.xy - q * d.z;
-  float t = clamp(abs(den.x) > abs(den.y) ? num.x / den.x : num.y / den.y, 0.0, 1.0);
+  float t = abs(den.x) > abs(den.y) ? num.x / den.x : num.y / den.y;
+  if (!(t >= 0.0 && t <= 1.0)) return false;
   float w = a.w + t * (b.w - a.w);
   depth = (a.z + t * (b.z - a.z)) / w;
   return w > 0.0;

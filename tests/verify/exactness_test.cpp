@@ -322,7 +322,8 @@ std::vector<Case> cases() {
   }
   // Frames the full sweep found wrong once, kept in the test command at the size that showed it:
   // demo 29 at 1280x720, a sliver side of the torus tying with its own face's depth
-  // (glsl::kCountPrelude's side_face); demo 5 there, a known defect (kKnownDefects).
+  // (glsl::kCountPrelude's side_face); demo 5 there, a side cut short by continuous clamping
+  // whose line, not the side, passed the fragment (kCountPrelude's depth_on).
   if (!full)
     for (const int frame : {5, 29})
       out.push_back({"demo_frame" + std::to_string(frame) + "_1280x720", builtin_at("demo", frame),
@@ -357,11 +358,8 @@ struct KnownDefect {
   const char* case_name;
   const char* variant;
 };
-// A defect found is listed here, {"case", "variant" or "*part of variants*"}.
-const std::vector<KnownDefect> kKnownDefects = {
-    // One pixel: gl, CPU volumes clamped to their receivers' intervals (continuous).
-    {"demo_frame5_1280x720", "gl_cpu_auto_cull_frustum_clamp_both"},
-};
+// None is open; a defect found is listed here, {"case", "variant" or "*part of variants*"}.
+const std::vector<KnownDefect> kKnownDefects = {};
 
 bool known_defect(const std::string& case_name, const std::string& variant) {
   for (const KnownDefect& d : kKnownDefects) {
