@@ -981,10 +981,8 @@ void GlBackend::draw_volume(std::size_t l, std::size_t o, bool additive) {
     const int caps = rule == Rule::zfail       ? glsl::kCapsAll
                      : v.light_caps_everywhere ? glsl::kCapsLight
                                                : glsl::kCapsNone;
-    // The eye (the eye-relative origin) in the object's space, in double: the face's plane is
-    // decided against it (glsl face_of_side).
-    const glm::vec4 eye(glm::inverse(glm::dmat4(plan.objects[o].model)) *
-                        glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    const glm::vec4 eye =  // glsl face_of_side decides a face's side against it
+        object_space_point(in_->scene.objects[o], glm::vec4(in_->scene.camera.position, 1.0f));
     programs.each([&](GLuint p) {
       glProgramUniform4fv(p, glsl::kLight, 1, glm::value_ptr(v.object_light));
       glProgramUniform4fv(p, glsl::kEye, 1, glm::value_ptr(eye));

@@ -233,7 +233,7 @@ void plan_frame(const Scene& scene, const RenderOptions& options, FramePlan& pla
       v.clamp.offsets.clear();
       v.clamp.intervals.clear();
       v.strips.clear();
-      v.object_light = object_space_light(object, scene.lights[l].position);
+      v.object_light = object_space_point(object, scene.lights[l].position);
       // Planes map from the eye-relative world to the object by the transpose of its model.
       const glm::vec4 object_far_plane =
           v.far_plane == kPlaneAtInfinity
@@ -287,8 +287,8 @@ glm::vec3 log_transmittance(const Material& material) {
   return out;
 }
 
-glm::vec4 object_space_light(const SceneObject& object, const glm::vec4& light) {
-  return glm::vec4(glm::inverse(glm::dmat4(object.transform)) * glm::dvec4(light));
+glm::vec4 object_space_point(const SceneObject& object, const glm::vec4& point) {
+  return glm::vec4(glm::inverse(glm::dmat4(object.transform)) * glm::dvec4(point));
 }
 
 }  // namespace shadowvol

@@ -201,8 +201,9 @@ Generator object_generator(const SceneObject& object, Generator requested);
 inline constexpr float kLogOfZero = -1000.0f;
 glm::vec3 log_transmittance(const Material& material);
 
-// The light in the object's own space (the inverse of its transform, in double), where its
-// volume is built whether on the CPU or in a geometry shader.
-glm::vec4 object_space_light(const SceneObject& object, const glm::vec4& light);
+// A world point (homogeneous: w = 0 a direction) in the object's own space (the inverse of its
+// transform, in double): the light, where its volume is built whether on the CPU or in a
+// geometry shader, and the eye, against which the volume stages decide a face's side.
+glm::vec4 object_space_point(const SceneObject& object, const glm::vec4& point);
 
 }  // namespace shadowvol
