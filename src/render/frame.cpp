@@ -222,6 +222,11 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
         "generator standard counts only the surfaces that face the light, but scene " + scene.name +
         " has transparent casters, whose every surface filters the light: use robust, "
         "multiplicity or auto");
+  for (const SceneObject& object : scene.objects)
+    if (auto ok = check_generator(options.generator, object.topology->report,
+                                  "scene " + scene.name + ", object '" + object.name + "'");
+        !ok)
+      return ok;
   return {};
 }
 

@@ -290,7 +290,8 @@ inline constexpr double kMaxDepthRange = 2e6;
 // Checks a frame a person asked for: the options (check_options), every light of the scene
 // (check_light), a camera that makes a view (finite, a target apart from its position, an up
 // off the view direction, fov in (0, 180), near > 0), the scene within the range above, and a
-// generator that counts every surface of its transparent casters.
+// generator exact on every object: one that counts every surface of its transparent casters,
+// and not the standard one on a mesh other than a closed 2-manifold (check_generator).
 Expected<void> check_frame(const Scene& scene, const RenderOptions& options);
 
 }  // namespace shadowvol

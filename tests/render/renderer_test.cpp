@@ -521,5 +521,23 @@ TEST(CheckFrame, RefusesWhatCannotBeDrawnExactly) {
   EXPECT_EQ(message(scaled(demo, 1e-6f)), "accepted");  // the range is relative, not absolute
 }
 
+// The standard generator counts only light-facing faces, which is exact on closed 2-manifolds
+// alone: any other mesh in the scene (here the ground, a single sheet) refuses the frame.
+TEST(CheckFrame, RefusesTheStandardGeneratorOnAMeshThatIsNotClosed) {
+  Scene demo = *builtin_scene("demo");
+  RenderOptions standard{96, 54};
+  standard.generator = Generator::standard;
+  auto refused = check_frame(demo, standard);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("scene demo, object 'ground': the standard generator "
+                                         "needs a closed 2-manifold, but this mesh has "),
+            std::string::npos)
+      << refused.error().message;
+  std::erase_if(demo.objects,
+                [](const SceneObject& o) { return !o.topology->report.closed_manifold; });
+  ASSERT_FALSE(demo.objects.empty());
+  EXPECT_TRUE(check_frame(demo, standard).ok());
+}
+
 }  // namespace
 }  // namespace shadowvol
