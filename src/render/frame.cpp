@@ -217,16 +217,16 @@ Expected<void> check_frame(const Scene& scene, const RenderOptions& options) {
     return make_error("scene " + scene.name + ": " + ok.error().message);
   if (auto ok = check_extent(scene); !ok)
     return make_error("scene " + scene.name + ": " + ok.error().message);
-  if (options.generator == Generator::standard && has_transparent_casters(scene))
+  if (options.generator != Generator::standard) return {};
+  if (has_transparent_casters(scene))
     return make_error(
         "generator standard counts only the surfaces that face the light, but scene " + scene.name +
         " has transparent casters, whose every surface filters the light: use robust, "
         "multiplicity or auto");
   for (const SceneObject& object : scene.objects)
-    if (auto ok = check_generator(options.generator, object.topology->report,
-                                  "scene " + scene.name + ", object '" + object.name + "'");
-        !ok)
-      return ok;
+    if (!object.topology->report.closed_manifold)
+      return check_generator(options.generator, object.topology->report,
+                             "scene " + scene.name + ", object '" + object.name + "'");
   return {};
 }
 
